@@ -1,0 +1,667 @@
+// Context: construction, errors, enables, queries, framebuffer control,
+// per-fragment state, passes and recording. Geometry lives in
+// context_geometry.cpp, display lists in context_lists.cpp.
+#include "pipeline/context.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "pipeline/context_scratch.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "stages/clear.hpp"
+
+namespace passim {
+
+Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
+    : fb_(config), profile_(profile), scratch_(std::make_unique<Scratch>(fb_, config.width)) {
+  viewport_.width = config.width;
+  viewport_.height = config.height;
+  fragment_.scissor_width = config.width;
+  fragment_.scissor_height = config.height;
+  fb_control_.draw_buffer = config.double_buffer ? GL_BACK : GL_FRONT;
+  pixel_.read_buffer = fb_control_.draw_buffer;
+  draw_buffer_ids_ = buffers_named(fb_control_.draw_buffer);
+  lighting_.lights.resize(static_cast<std::size_t>(profile_.limits.max_lights));
+  lighting_.lights[0].diffuse = Vec4(1.0);
+  lighting_.lights[0].specular = Vec4(1.0);
+  update_fragment_bits();
+  scratch_->fragment_ops.configure(FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_});
+}
+
+Context::~Context() = default;
+
+void Context::update_fragment_bits() {
+  fragment_bits_ = fb_.config.color_bits;
+  // A26: with fewer than 2 alpha bits, alpha is carried at the RGB precision.
+  if (fragment_bits_[3] < 2) fragment_bits_[3] = std::max({fragment_bits_[0], fragment_bits_[1], fragment_bits_[2]});
+}
+
+// ---------------------------------------------------------------- errors
+
+void Context::set_error(GLenum error) {
+  // §2.5: the first error is kept until glGetError reads it; every error is logged.
+  if (error_ == GL_NO_ERROR) error_ = error;
+  error_log_.push_back(GlErrorRecord{current_call_, error, where_});
+}
+
+GLenum Context::glGetError() {
+  PASSIM_ENTRY_RET(GL_INVALID_OPERATION)
+  GLenum e = error_;
+  error_ = GL_NO_ERROR;
+  return e;
+}
+
+void Context::warn_once(const std::string& message) {
+  if (std::find(warnings_.begin(), warnings_.end(), message) == warnings_.end()) warnings_.push_back(message);
+}
+
+// ---------------------------------------------------------------- recording and lists
+
+bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values) {
+  static const CallInfo* const draw_arrays = find_call("glDrawArrays");
+  static const CallInfo* const draw_elements = find_call("glDrawElements");
+  static const CallInfo* const array_element = find_call("glArrayElement");
+  const bool array_draw = &info == draw_arrays || &info == draw_elements || &info == array_element;
+
+  if (sink_ && !info.query && !info.recorded_at_draw) {
+    if (array_draw) {
+      // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
+      int max_index = -1;
+      if (&info == draw_arrays) {
+        max_index = static_cast<int>(values[1].i + values[2].i - 1);
+      } else if (&info == array_element) {
+        max_index = static_cast<int>(values[0].i);
+      } else if (values[3].bytes) {
+        for (std::size_t k = 0; k < values[3].count; ++k) {
+          std::uint32_t idx = 0;
+          const std::byte* p = values[3].bytes->data();
+          if (values[3].elem_type == GL_UNSIGNED_BYTE) idx = static_cast<std::uint8_t>(p[k]);
+          else if (values[3].elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); idx = s; }
+          else if (values[3].elem_type == GL_UNSIGNED_INT) std::memcpy(&idx, p + 4 * k, 4);
+          max_index = std::max(max_index, static_cast<int>(idx));
+        }
+      }
+      if (max_index >= 0) record_client_arrays(max_index);
+    }
+    sink_->on_call(Call{&info, values});
+  }
+  if (compiling_list_ == 0 || !info.compiled_into_lists) return false;
+  if (array_draw) {
+    // §5.4: vertex-array commands are compiled with their data dereferenced: as the
+    // equivalent Begin / per-element calls / End.
+    std::vector<Call>& out = compiling_calls_;
+    static const CallInfo* const begin = find_call("glBegin");
+    static const CallInfo* const end = find_call("glEnd");
+    auto compile_indices = [&](GLenum mode, const std::vector<int>& indices) {
+      Value m;
+      m.i = mode;
+      out.push_back(Call{begin, {m}});
+      for (int i : indices) compile_array_element(i, out);
+      out.push_back(Call{end, {}});
+    };
+    if (&info == array_element) {
+      compile_array_element(static_cast<int>(values[0].i), out);
+    } else if (&info == draw_arrays) {
+      std::vector<int> idx;
+      for (std::int64_t k = 0; k < values[2].i; ++k) idx.push_back(static_cast<int>(values[1].i + k));
+      if (values[2].i >= 0) compile_indices(static_cast<GLenum>(values[0].i), idx);
+    } else {
+      std::vector<int> idx;
+      const Value& ind = values[3];
+      for (std::size_t k = 0; ind.bytes && k < ind.count; ++k) {
+        const std::byte* p = ind.bytes->data();
+        std::uint32_t v = 0;
+        if (ind.elem_type == GL_UNSIGNED_BYTE) v = static_cast<std::uint8_t>(p[k]);
+        else if (ind.elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); v = s; }
+        else std::memcpy(&v, p + 4 * k, 4);
+        idx.push_back(static_cast<int>(v));
+      }
+      compile_indices(static_cast<GLenum>(values[0].i), idx);
+    }
+  } else {
+    compiling_calls_.push_back(Call{&info, std::move(values)});
+  }
+  return compile_mode_ == GL_COMPILE;
+}
+
+// ---------------------------------------------------------------- enables
+
+bool Context::set_capability(GLenum cap, bool v) {
+  if (cap >= GL_LIGHT0 && cap < GL_LIGHT0 + static_cast<GLenum>(lighting_.lights.size())) {
+    lighting_.lights[cap - GL_LIGHT0].enabled = v;
+    return true;
+  }
+  if (cap >= GL_CLIP_PLANE0 && cap < GL_CLIP_PLANE0 + 6) {
+    transform_.clip_enabled[cap - GL_CLIP_PLANE0] = v;
+    return true;
+  }
+  switch (cap) {
+    case GL_LIGHTING: lighting_.enabled = v; return true;
+    case GL_COLOR_MATERIAL:
+      lighting_.color_material = v;
+      if (v) apply_color_material();
+      return true;
+    case GL_NORMALIZE: transform_.normalize = v; return true;
+    case GL_RESCALE_NORMAL: transform_.rescale_normal = v; return true;
+    case GL_CULL_FACE: polygon_.cull_enabled = v; return true;
+    case GL_POLYGON_OFFSET_FILL: polygon_.offset_fill = v; return true;
+    case GL_POLYGON_OFFSET_LINE: polygon_.offset_line = v; return true;
+    case GL_POLYGON_OFFSET_POINT: polygon_.offset_point = v; return true;
+    case GL_SCISSOR_TEST: fragment_.scissor_enabled = v; return true;
+    case GL_ALPHA_TEST: fragment_.alpha_test = v; return true;
+    case GL_STENCIL_TEST: fragment_.stencil_test = v; return true;
+    case GL_DEPTH_TEST: fragment_.depth_test = v; return true;
+    case GL_BLEND: fragment_.blend = v; return true;
+    case GL_DITHER: fragment_.dither = v; return true;  // A3: no effect on the bits
+    case GL_COLOR_LOGIC_OP: fragment_.logic_op_enabled = v; return true;
+    // Accepted and stored; their stages come with later work (see docs/status.md).
+    case GL_INDEX_LOGIC_OP:
+    case GL_POINT_SMOOTH:
+    case GL_LINE_SMOOTH:
+    case GL_POLYGON_SMOOTH:
+    case GL_LINE_STIPPLE:
+    case GL_POLYGON_STIPPLE:
+    case GL_FOG:
+    case GL_TEXTURE_1D:
+    case GL_TEXTURE_2D:
+    case GL_TEXTURE_3D:
+    case GL_TEXTURE_GEN_S:
+    case GL_TEXTURE_GEN_T:
+    case GL_TEXTURE_GEN_R:
+    case GL_TEXTURE_GEN_Q:
+    case GL_AUTO_NORMAL:
+    case GL_COLOR_TABLE:
+    case GL_POST_CONVOLUTION_COLOR_TABLE:
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
+    case GL_CONVOLUTION_1D:
+    case GL_CONVOLUTION_2D:
+    case GL_SEPARABLE_2D:
+    case GL_HISTOGRAM:
+    case GL_MINMAX:
+      unmodelled_caps_[cap] = v;
+      if (v) warn_once(fmt::format("{} is enabled, but that stage is not modelled yet: it has no effect", enum_name(cap)));
+      return true;
+    default: return false;
+  }
+}
+
+void Context::glEnable(GLenum cap) {
+  PASSIM_ENTRY(cap)
+  if (!set_capability(cap, true)) set_error(GL_INVALID_ENUM);
+}
+
+void Context::glDisable(GLenum cap) {
+  PASSIM_ENTRY(cap)
+  if (!set_capability(cap, false)) set_error(GL_INVALID_ENUM);
+}
+
+GLboolean Context::glIsEnabled(GLenum cap) {
+  PASSIM_ENTRY_RET(GL_FALSE, cap)
+  std::vector<double> v;
+  bool is_color = false;
+  if (!get_state(cap, v, is_color) || v.size() != 1) {
+    set_error(GL_INVALID_ENUM);
+    return GL_FALSE;
+  }
+  return v[0] != 0.0 ? GL_TRUE : GL_FALSE;
+}
+
+// ---------------------------------------------------------------- queries (§6.1.2)
+
+bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) const {
+  auto one = [&](double v) { out = {v}; return true; };
+  auto color = [&](const Vec4& c) { out = {c.r, c.g, c.b, c.a}; is_color = true; return true; };
+  auto matrix = [&](const Mat4& m) {
+    out.clear();
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) out.push_back(m[c][r]);
+    return true;
+  };
+  const FramebufferConfig& cfg = fb_.config;
+  const MachineLimits& lim = profile_.limits;
+  if (p >= GL_LIGHT0 && p < GL_LIGHT0 + lighting_.lights.size()) return one(lighting_.lights[p - GL_LIGHT0].enabled);
+  if (p >= GL_CLIP_PLANE0 && p < GL_CLIP_PLANE0 + 6) return one(transform_.clip_enabled[p - GL_CLIP_PLANE0]);
+  if (auto it = unmodelled_caps_.find(p); it != unmodelled_caps_.end()) return one(it->second);
+  switch (p) {
+    // enables
+    case GL_LIGHTING: return one(lighting_.enabled);
+    case GL_COLOR_MATERIAL: return one(lighting_.color_material);
+    case GL_NORMALIZE: return one(transform_.normalize);
+    case GL_RESCALE_NORMAL: return one(transform_.rescale_normal);
+    case GL_CULL_FACE: return one(polygon_.cull_enabled);
+    case GL_POLYGON_OFFSET_FILL: return one(polygon_.offset_fill);
+    case GL_POLYGON_OFFSET_LINE: return one(polygon_.offset_line);
+    case GL_POLYGON_OFFSET_POINT: return one(polygon_.offset_point);
+    case GL_SCISSOR_TEST: return one(fragment_.scissor_enabled);
+    case GL_ALPHA_TEST: return one(fragment_.alpha_test);
+    case GL_STENCIL_TEST: return one(fragment_.stencil_test);
+    case GL_DEPTH_TEST: return one(fragment_.depth_test);
+    case GL_BLEND: return one(fragment_.blend);
+    case GL_DITHER: return one(fragment_.dither);
+    case GL_COLOR_LOGIC_OP: return one(fragment_.logic_op_enabled);
+    case GL_INDEX_LOGIC_OP: case GL_POINT_SMOOTH: case GL_LINE_SMOOTH: case GL_POLYGON_SMOOTH:
+    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_FOG: case GL_TEXTURE_1D: case GL_TEXTURE_2D:
+    case GL_TEXTURE_3D: case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R:
+    case GL_TEXTURE_GEN_Q: case GL_AUTO_NORMAL: case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
+    case GL_SEPARABLE_2D: case GL_HISTOGRAM: case GL_MINMAX:
+      return one(0.0);
+    // transformation
+    case GL_MATRIX_MODE: return one(transform_.matrix_mode);
+    case GL_MODELVIEW_MATRIX: return matrix(transform_.modelview.back());
+    case GL_PROJECTION_MATRIX: return matrix(transform_.projection.back());
+    case GL_TEXTURE_MATRIX: return matrix(transform_.texture.back());
+    case GL_COLOR_MATRIX: return matrix(transform_.color.back());
+    case GL_MODELVIEW_STACK_DEPTH: return one(static_cast<double>(transform_.modelview.size()));
+    case GL_PROJECTION_STACK_DEPTH: return one(static_cast<double>(transform_.projection.size()));
+    case GL_TEXTURE_STACK_DEPTH: return one(static_cast<double>(transform_.texture.size()));
+    case GL_COLOR_MATRIX_STACK_DEPTH: return one(static_cast<double>(transform_.color.size()));
+    case GL_VIEWPORT: out = {double(viewport_.x), double(viewport_.y), double(viewport_.width), double(viewport_.height)}; return true;
+    case GL_DEPTH_RANGE: out = {viewport_.near_val, viewport_.far_val}; return true;
+    // limits
+    case GL_MAX_MODELVIEW_STACK_DEPTH: return one(lim.max_modelview_stack);
+    case GL_MAX_PROJECTION_STACK_DEPTH: return one(lim.max_projection_stack);
+    case GL_MAX_TEXTURE_STACK_DEPTH: return one(lim.max_texture_stack);
+    case GL_MAX_COLOR_MATRIX_STACK_DEPTH: return one(lim.max_color_matrix_stack);
+    case GL_MAX_VIEWPORT_DIMS: out = {double(lim.max_viewport_size), double(lim.max_viewport_size)}; return true;
+    case GL_MAX_LIGHTS: return one(lim.max_lights);
+    case GL_MAX_CLIP_PLANES: return one(lim.max_clip_planes);
+    case GL_MAX_LIST_NESTING: return one(lim.max_list_nesting);
+    case GL_MAX_TEXTURE_SIZE: return one(lim.max_texture_size);
+    case GL_SUBPIXEL_BITS: return one(lim.subpixel_bits);
+    case GL_MAX_ATTRIB_STACK_DEPTH: return one(lim.max_attrib_stack);
+    // framebuffer
+    case GL_RED_BITS: return one(cfg.color_bits[0]);
+    case GL_GREEN_BITS: return one(cfg.color_bits[1]);
+    case GL_BLUE_BITS: return one(cfg.color_bits[2]);
+    case GL_ALPHA_BITS: return one(cfg.color_bits[3]);
+    case GL_DEPTH_BITS: return one(cfg.depth_bits);
+    case GL_STENCIL_BITS: return one(cfg.stencil_bits);
+    case GL_ACCUM_RED_BITS: case GL_ACCUM_GREEN_BITS: case GL_ACCUM_BLUE_BITS: case GL_ACCUM_ALPHA_BITS:
+      return one(cfg.accum_bits);
+    case GL_DOUBLEBUFFER: return one(cfg.double_buffer);
+    case GL_STEREO: return one(0.0);
+    case GL_RGBA_MODE: return one(1.0);
+    case GL_AUX_BUFFERS: return one(0.0);
+    case GL_DRAW_BUFFER: return one(fb_control_.draw_buffer);
+    case GL_READ_BUFFER: return one(pixel_.read_buffer);
+    case GL_COLOR_WRITEMASK:
+      out = {double(fb_control_.color_mask[0]), double(fb_control_.color_mask[1]), double(fb_control_.color_mask[2]),
+             double(fb_control_.color_mask[3])};
+      return true;
+    case GL_DEPTH_WRITEMASK: return one(fb_control_.depth_mask);
+    case GL_STENCIL_WRITEMASK: return one(fb_control_.stencil_writemask & max_code(cfg.stencil_bits));
+    case GL_COLOR_CLEAR_VALUE: return color(fb_control_.clear_color);
+    case GL_DEPTH_CLEAR_VALUE: return one(fb_control_.clear_depth);
+    case GL_STENCIL_CLEAR_VALUE: return one(fb_control_.clear_stencil);
+    case GL_ACCUM_CLEAR_VALUE: return color(fb_control_.clear_accum);
+    // fragment operations
+    case GL_SCISSOR_BOX:
+      out = {double(fragment_.scissor_x), double(fragment_.scissor_y), double(fragment_.scissor_width),
+             double(fragment_.scissor_height)};
+      return true;
+    case GL_ALPHA_TEST_FUNC: return one(fragment_.alpha_func);
+    case GL_ALPHA_TEST_REF: is_color = true; return one(fragment_.alpha_ref);
+    case GL_STENCIL_FUNC: return one(fragment_.stencil_func);
+    case GL_STENCIL_REF: return one(fragment_.stencil_ref);
+    case GL_STENCIL_VALUE_MASK: return one(fragment_.stencil_value_mask & max_code(cfg.stencil_bits));
+    case GL_STENCIL_FAIL: return one(fragment_.stencil_fail);
+    case GL_STENCIL_PASS_DEPTH_FAIL: return one(fragment_.stencil_depth_fail);
+    case GL_STENCIL_PASS_DEPTH_PASS: return one(fragment_.stencil_depth_pass);
+    case GL_DEPTH_FUNC: return one(fragment_.depth_func);
+    case GL_BLEND_SRC: return one(fragment_.blend_src);
+    case GL_BLEND_DST: return one(fragment_.blend_dst);
+    case GL_BLEND_EQUATION: return one(fragment_.blend_equation);
+    case GL_BLEND_COLOR: return color(fragment_.blend_color);
+    case GL_LOGIC_OP_MODE: return one(fragment_.logic_op);
+    // rasterization
+    case GL_CULL_FACE_MODE: return one(polygon_.cull_face);
+    case GL_FRONT_FACE: return one(polygon_.front_face);
+    case GL_POLYGON_MODE: out = {double(polygon_.mode_front), double(polygon_.mode_back)}; return true;
+    case GL_POLYGON_OFFSET_FACTOR: return one(polygon_.offset_factor);
+    case GL_POLYGON_OFFSET_UNITS: return one(polygon_.offset_units);
+    case GL_POINT_SIZE: return one(polygon_.point_size);
+    case GL_LINE_WIDTH: return one(polygon_.line_width);
+    // lighting and current values
+    case GL_SHADE_MODEL: return one(lighting_.shade_model);
+    case GL_LIGHT_MODEL_AMBIENT: return color(lighting_.model_ambient);
+    case GL_LIGHT_MODEL_LOCAL_VIEWER: return one(lighting_.local_viewer);
+    case GL_LIGHT_MODEL_TWO_SIDE: return one(lighting_.two_side);
+    case GL_LIGHT_MODEL_COLOR_CONTROL: return one(lighting_.color_control);
+    case GL_COLOR_MATERIAL_FACE: return one(lighting_.color_material_face);
+    case GL_COLOR_MATERIAL_PARAMETER: return one(lighting_.color_material_mode);
+    case GL_CURRENT_COLOR: return color(current_.color);
+    case GL_CURRENT_NORMAL: out = {current_.normal.x, current_.normal.y, current_.normal.z}; return true;
+    case GL_CURRENT_TEXTURE_COORDS:
+      out = {current_.texcoord.s, current_.texcoord.t, current_.texcoord.p, current_.texcoord.q};
+      return true;
+    // lists and arrays
+    case GL_LIST_BASE: return one(list_base_);
+    case GL_LIST_INDEX: return one(compiling_list_);
+    case GL_LIST_MODE: return one(compiling_list_ ? compile_mode_ : 0);
+    case GL_VERTEX_ARRAY: return one(arrays_.vertex.enabled);
+    case GL_NORMAL_ARRAY: return one(arrays_.normal.enabled);
+    case GL_COLOR_ARRAY: return one(arrays_.color.enabled);
+    case GL_TEXTURE_COORD_ARRAY: return one(arrays_.texcoord.enabled);
+    default: return false;
+  }
+}
+
+namespace {
+// §6.1.2: conversion of state values to the type a Get command returns.
+GLint to_integer(double v, bool is_color) {
+  if (is_color) {
+    // Colours map linearly: 1.0 to the largest positive integer, -1.0 to the most negative.
+    const double m = 2147483647.0;
+    return static_cast<GLint>(round_half_up(clamp_nan_low(v, -1.0, 1.0) * m));
+  }
+  if (!(v == v)) return 0;
+  return static_cast<GLint>(std::clamp(round_half_up(v), -2147483648.0, 2147483647.0));
+}
+}  // namespace
+
+void Context::glGetIntegerv(GLenum pname, GLint* params) {
+  PASSIM_ENTRY()
+  std::vector<double> v;
+  bool is_color = false;
+  if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
+  for (std::size_t k = 0; k < v.size(); ++k) params[k] = to_integer(v[k], is_color);
+}
+
+void Context::glGetFloatv(GLenum pname, GLfloat* params) {
+  PASSIM_ENTRY()
+  std::vector<double> v;
+  bool is_color = false;
+  if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
+  for (std::size_t k = 0; k < v.size(); ++k) params[k] = static_cast<GLfloat>(v[k]);
+}
+
+void Context::glGetDoublev(GLenum pname, GLdouble* params) {
+  PASSIM_ENTRY()
+  std::vector<double> v;
+  bool is_color = false;
+  if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
+  std::copy(v.begin(), v.end(), params);
+}
+
+void Context::glGetBooleanv(GLenum pname, GLboolean* params) {
+  PASSIM_ENTRY()
+  std::vector<double> v;
+  bool is_color = false;
+  if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
+  for (std::size_t k = 0; k < v.size(); ++k) params[k] = v[k] != 0.0 ? GL_TRUE : GL_FALSE;
+}
+
+void Context::glHint(GLenum target, GLenum mode) {
+  PASSIM_ENTRY(target, mode)
+  switch (target) {
+    case GL_PERSPECTIVE_CORRECTION_HINT: case GL_POINT_SMOOTH_HINT: case GL_LINE_SMOOTH_HINT:
+    case GL_POLYGON_SMOOTH_HINT: case GL_FOG_HINT: break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+  if (mode != GL_FASTEST && mode != GL_NICEST && mode != GL_DONT_CARE) set_error(GL_INVALID_ENUM);
+  // Hints never change the bits here: the arithmetic is fixed (docs/arithmetic.md).
+}
+
+void Context::glFlush() { PASSIM_ENTRY() }
+void Context::glFinish() { PASSIM_ENTRY() }
+
+// ---------------------------------------------------------------- framebuffer control (§4.2)
+
+std::vector<ColorBufferId> Context::buffers_named(GLenum mode) const {
+  const bool dbl = fb_.config.double_buffer;
+  switch (mode) {
+    case GL_FRONT: case GL_FRONT_LEFT: case GL_LEFT: return {ColorBufferId::FrontLeft};
+    case GL_BACK: case GL_BACK_LEFT:
+      if (dbl) return {ColorBufferId::BackLeft};
+      return {};
+    case GL_FRONT_AND_BACK:
+      if (dbl) return {ColorBufferId::FrontLeft, ColorBufferId::BackLeft};
+      return {ColorBufferId::FrontLeft};
+    default: return {};
+  }
+}
+
+namespace {
+bool is_buffer_enum(GLenum mode) {
+  switch (mode) {
+    case GL_NONE: case GL_FRONT_LEFT: case GL_FRONT_RIGHT: case GL_BACK_LEFT: case GL_BACK_RIGHT: case GL_FRONT:
+    case GL_BACK: case GL_LEFT: case GL_RIGHT: case GL_FRONT_AND_BACK: return true;
+    default: return mode >= GL_AUX0 && mode < GL_AUX0 + 4;
+  }
+}
+}  // namespace
+
+void Context::glDrawBuffer(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (!is_buffer_enum(mode)) return set_error(GL_INVALID_ENUM);
+  std::vector<ColorBufferId> ids = buffers_named(mode);
+  if (mode != GL_NONE && ids.empty()) return set_error(GL_INVALID_OPERATION);  // names no existing buffer
+  fb_control_.draw_buffer = mode;
+  draw_buffer_ids_ = std::move(ids);
+}
+
+void Context::glReadBuffer(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (!is_buffer_enum(mode) || mode == GL_NONE || mode == GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
+  if (buffers_named(mode).empty()) return set_error(GL_INVALID_OPERATION);
+  pixel_.read_buffer = mode;
+}
+
+const ColorPlane* Context::color_buffer(GLenum which) const {
+  std::vector<ColorBufferId> ids = buffers_named(which);
+  if (ids.empty()) return nullptr;
+  return &fb_.color[static_cast<int>(ids.front())];
+}
+
+void Context::glClear(GLbitfield mask) {
+  PASSIM_ENTRY(mask)
+  const GLbitfield known = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | GL_ACCUM_BUFFER_BIT;
+  if (mask & ~known) return set_error(GL_INVALID_VALUE);
+  clear_buffers(mask, fb_control_, fragment_, draw_buffer_ids_, fb_, counters());
+}
+
+void Context::glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {
+  PASSIM_ENTRY(r, g, b, a)
+  fb_control_.clear_color = Vec4(clamp_nan_low(r, 0, 1), clamp_nan_low(g, 0, 1), clamp_nan_low(b, 0, 1),
+                                 clamp_nan_low(a, 0, 1));
+}
+
+void Context::glClearDepth(GLdouble depth) {
+  PASSIM_ENTRY(depth)
+  fb_control_.clear_depth = clamp_nan_low(depth, 0.0, 1.0);
+}
+
+void Context::glClearStencil(GLint s) {
+  PASSIM_ENTRY(s)
+  fb_control_.clear_stencil = s;
+}
+
+void Context::glClearAccum(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {
+  PASSIM_ENTRY(r, g, b, a)
+  fb_control_.clear_accum = Vec4(clamp_nan_low(r, -1, 1), clamp_nan_low(g, -1, 1), clamp_nan_low(b, -1, 1),
+                                 clamp_nan_low(a, -1, 1));
+}
+
+void Context::glColorMask(GLboolean r, GLboolean g, GLboolean b, GLboolean a) {
+  PASSIM_ENTRY(r, g, b, a)
+  fb_control_.color_mask = {r != GL_FALSE, g != GL_FALSE, b != GL_FALSE, a != GL_FALSE};
+}
+
+void Context::glDepthMask(GLboolean flag) {
+  PASSIM_ENTRY(flag)
+  fb_control_.depth_mask = flag != GL_FALSE;
+}
+
+void Context::glStencilMask(GLuint mask) {
+  PASSIM_ENTRY(mask)
+  fb_control_.stencil_writemask = mask;
+}
+
+// ---------------------------------------------------------------- per-fragment state (§4.1)
+
+namespace {
+bool is_compare_func(GLenum f) { return f >= GL_NEVER && f <= GL_ALWAYS; }
+bool is_stencil_op(GLenum op) {
+  return op == GL_KEEP || op == GL_ZERO || op == GL_REPLACE || op == GL_INCR || op == GL_DECR || op == GL_INVERT;
+}
+bool is_src_factor(GLenum f) {
+  switch (f) {
+    case GL_ZERO: case GL_ONE: case GL_DST_COLOR: case GL_ONE_MINUS_DST_COLOR: case GL_SRC_ALPHA:
+    case GL_ONE_MINUS_SRC_ALPHA: case GL_DST_ALPHA: case GL_ONE_MINUS_DST_ALPHA: case GL_SRC_ALPHA_SATURATE:
+    case GL_CONSTANT_COLOR: case GL_ONE_MINUS_CONSTANT_COLOR: case GL_CONSTANT_ALPHA:
+    case GL_ONE_MINUS_CONSTANT_ALPHA: return true;
+    default: return false;
+  }
+}
+bool is_dst_factor(GLenum f) {
+  switch (f) {
+    case GL_ZERO: case GL_ONE: case GL_SRC_COLOR: case GL_ONE_MINUS_SRC_COLOR: case GL_SRC_ALPHA:
+    case GL_ONE_MINUS_SRC_ALPHA: case GL_DST_ALPHA: case GL_ONE_MINUS_DST_ALPHA: case GL_CONSTANT_COLOR:
+    case GL_ONE_MINUS_CONSTANT_COLOR: case GL_CONSTANT_ALPHA: case GL_ONE_MINUS_CONSTANT_ALPHA: return true;
+    default: return false;
+  }
+}
+}  // namespace
+
+void Context::glScissor(GLint x, GLint y, GLsizei width, GLsizei height) {
+  PASSIM_ENTRY(x, y, width, height)
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  fragment_.scissor_x = x;
+  fragment_.scissor_y = y;
+  fragment_.scissor_width = width;
+  fragment_.scissor_height = height;
+}
+
+void Context::glAlphaFunc(GLenum func, GLclampf ref) {
+  PASSIM_ENTRY(func, ref)
+  if (!is_compare_func(func)) return set_error(GL_INVALID_ENUM);
+  fragment_.alpha_func = func;
+  fragment_.alpha_ref = clamp_nan_low(ref, 0.0, 1.0);
+}
+
+void Context::glStencilFunc(GLenum func, GLint ref, GLuint mask) {
+  PASSIM_ENTRY(func, ref, mask)
+  if (!is_compare_func(func)) return set_error(GL_INVALID_ENUM);
+  fragment_.stencil_func = func;
+  fragment_.stencil_ref = ref;
+  fragment_.stencil_value_mask = mask;
+}
+
+void Context::glStencilOp(GLenum fail, GLenum zfail, GLenum zpass) {
+  PASSIM_ENTRY(fail, zfail, zpass)
+  if (!is_stencil_op(fail) || !is_stencil_op(zfail) || !is_stencil_op(zpass)) return set_error(GL_INVALID_ENUM);
+  fragment_.stencil_fail = fail;
+  fragment_.stencil_depth_fail = zfail;
+  fragment_.stencil_depth_pass = zpass;
+}
+
+void Context::glDepthFunc(GLenum func) {
+  PASSIM_ENTRY(func)
+  if (!is_compare_func(func)) return set_error(GL_INVALID_ENUM);
+  fragment_.depth_func = func;
+}
+
+void Context::glBlendFunc(GLenum sfactor, GLenum dfactor) {
+  PASSIM_ENTRY(sfactor, dfactor)
+  if (!is_src_factor(sfactor) || !is_dst_factor(dfactor)) return set_error(GL_INVALID_ENUM);
+  fragment_.blend_src = sfactor;
+  fragment_.blend_dst = dfactor;
+}
+
+void Context::glBlendEquation(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (mode != GL_FUNC_ADD && mode != GL_FUNC_SUBTRACT && mode != GL_FUNC_REVERSE_SUBTRACT && mode != GL_MIN &&
+      mode != GL_MAX)
+    return set_error(GL_INVALID_ENUM);
+  fragment_.blend_equation = mode;
+}
+
+void Context::glBlendColor(GLclampf r, GLclampf g, GLclampf b, GLclampf a) {
+  PASSIM_ENTRY(r, g, b, a)
+  fragment_.blend_color = Vec4(clamp_nan_low(r, 0, 1), clamp_nan_low(g, 0, 1), clamp_nan_low(b, 0, 1),
+                               clamp_nan_low(a, 0, 1));
+}
+
+void Context::glLogicOp(GLenum opcode) {
+  PASSIM_ENTRY(opcode)
+  if (opcode < GL_CLEAR || opcode > GL_SET) return set_error(GL_INVALID_ENUM);
+  fragment_.logic_op = opcode;
+}
+
+// ---------------------------------------------------------------- passes (EXT_debug_marker)
+
+Counters& Context::counters() {
+  if (current_pass_ == SIZE_MAX) {
+    passes_.push_back(Pass{"(unmarked)", static_cast<int>(marker_stack_.size()), {}});
+    current_pass_ = passes_.size() - 1;
+  }
+  Counters* c = &passes_[current_pass_].counters;
+  scratch_->counters = c;
+  return *c;
+}
+
+void Context::glPushGroupMarkerEXT(GLsizei length, const GLchar* marker) {
+  PASSIM_ENTRY(length, marker)
+  if (length < 0) return set_error(GL_INVALID_VALUE);
+  std::string label = marker ? (length == 0 ? std::string(marker) : std::string(marker, strnlen(marker, static_cast<std::size_t>(length)))) : "";
+  passes_.push_back(Pass{label, static_cast<int>(marker_stack_.size()), {}});
+  marker_stack_.push_back(passes_.size() - 1);
+  current_pass_ = passes_.size() - 1;
+}
+
+void Context::glPopGroupMarkerEXT() {
+  PASSIM_ENTRY()
+  if (marker_stack_.empty()) {
+    warn_once("glPopGroupMarkerEXT without a matching push: ignored");
+    return;
+  }
+  marker_stack_.pop_back();
+  // Work after the pop belongs to the enclosing marker, as a new segment of it.
+  if (marker_stack_.empty()) {
+    current_pass_ = SIZE_MAX;
+  } else {
+    const Pass& outer = passes_[marker_stack_.back()];
+    passes_.push_back(Pass{outer.label, outer.depth, {}});
+    marker_stack_.back() = passes_.size() - 1;
+    current_pass_ = marker_stack_.back();
+  }
+}
+
+void Context::glInsertEventMarkerEXT(GLsizei length, const GLchar* marker) {
+  PASSIM_ENTRY(length, marker)
+  if (length < 0) set_error(GL_INVALID_VALUE);
+}
+
+Counters Context::total_counters() const {
+  Counters total;
+  for (const Pass& p : passes_) total += p.counters;
+  return total;
+}
+
+void Context::check_balance() const {
+  for (const Pass& p : passes_) {
+    std::string err = p.counters.balance_error();
+    if (!err.empty()) throw InternalError(fmt::format("pass \"{}\": {}", p.label, err));
+  }
+}
+
+void Context::swap_buffers() {
+  if (!fb_.config.double_buffer) return;
+  fb_.color[0].rgba = fb_.color[1].rgba;  // the back buffer's content is kept (GLX leaves it undefined)
+}
+
+void Context::set_client_array_extent(GLenum array, std::size_t bytes) {
+  switch (array) {
+    case GL_VERTEX_ARRAY: arrays_.vertex.extent = bytes; break;
+    case GL_NORMAL_ARRAY: arrays_.normal.extent = bytes; break;
+    case GL_COLOR_ARRAY: arrays_.color.extent = bytes; break;
+    case GL_TEXTURE_COORD_ARRAY: arrays_.texcoord.extent = bytes; break;
+    default: break;
+  }
+}
+
+}  // namespace passim

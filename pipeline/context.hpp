@@ -1,0 +1,382 @@
+// Context: the OpenGL 1.2 (+ ARB_imaging) entry points with the spec's error
+// semantics (§2.5: an erroneous call has no effect and sets an error flag).
+// Each entry point validates, then updates state or hands work to a stage.
+#pragma once
+#include <array>
+#include <functional>
+#include <stdexcept>
+#include <type_traits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pipeline/calls.hpp"
+#include "pipeline/counters.hpp"
+#include "pipeline/framebuffer.hpp"
+#include "pipeline/gl.hpp"
+#include "pipeline/profile.hpp"
+#include "pipeline/state.hpp"
+#include "stages/rasterizer.hpp"
+#include "stages/vertex.hpp"
+
+namespace passim {
+
+// Receives every call the application makes (outermost calls only), for recording.
+class CallSink {
+ public:
+  virtual ~CallSink() = default;
+  virtual void on_call(const Call& call) = 0;
+};
+
+// Thrown for conditions that are not GL errors but make a run meaningless
+// (a broken counter balance, an out-of-range client array read from a trace).
+struct InternalError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+struct ClientDataError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Context {
+ public:
+  explicit Context(const FramebufferConfig& config, const MachineProfile& profile = machine_profiles().front());
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  // ---- errors and state (§2.5, §2.11, §6.1) ----
+  GLenum glGetError();
+  void glEnable(GLenum cap);
+  void glDisable(GLenum cap);
+  GLboolean glIsEnabled(GLenum cap);
+  void glGetIntegerv(GLenum pname, GLint* params);
+  void glGetFloatv(GLenum pname, GLfloat* params);
+  void glGetDoublev(GLenum pname, GLdouble* params);
+  void glGetBooleanv(GLenum pname, GLboolean* params);
+  void glHint(GLenum target, GLenum mode);
+  void glFlush();
+  void glFinish();
+
+  // ---- framebuffer control and clears (§4.2) ----
+  void glClear(GLbitfield mask);
+  void glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
+  void glClearDepth(GLdouble depth);
+  void glClearStencil(GLint s);
+  void glClearAccum(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
+  void glColorMask(GLboolean r, GLboolean g, GLboolean b, GLboolean a);
+  void glDepthMask(GLboolean flag);
+  void glStencilMask(GLuint mask);
+  void glDrawBuffer(GLenum mode);
+  void glReadBuffer(GLenum mode);
+
+  // ---- per-fragment operations (§4.1) ----
+  void glScissor(GLint x, GLint y, GLsizei width, GLsizei height);
+  void glAlphaFunc(GLenum func, GLclampf ref);
+  void glStencilFunc(GLenum func, GLint ref, GLuint mask);
+  void glStencilOp(GLenum fail, GLenum zfail, GLenum zpass);
+  void glDepthFunc(GLenum func);
+  void glBlendFunc(GLenum sfactor, GLenum dfactor);
+  void glBlendEquation(GLenum mode);
+  void glBlendColor(GLclampf r, GLclampf g, GLclampf b, GLclampf a);
+  void glLogicOp(GLenum opcode);
+
+  // ---- coordinate transformation (§2.10) ----
+  void glViewport(GLint x, GLint y, GLsizei width, GLsizei height);
+  void glDepthRange(GLclampd near_val, GLclampd far_val);
+  void glMatrixMode(GLenum mode);
+  void glLoadIdentity();
+  void glLoadMatrixf(const GLfloat* m);
+  void glLoadMatrixd(const GLdouble* m);
+  void glMultMatrixf(const GLfloat* m);
+  void glMultMatrixd(const GLdouble* m);
+  void glPushMatrix();
+  void glPopMatrix();
+  void glTranslatef(GLfloat x, GLfloat y, GLfloat z);
+  void glTranslated(GLdouble x, GLdouble y, GLdouble z);
+  void glRotatef(GLfloat angle, GLfloat x, GLfloat y, GLfloat z);
+  void glRotated(GLdouble angle, GLdouble x, GLdouble y, GLdouble z);
+  void glScalef(GLfloat x, GLfloat y, GLfloat z);
+  void glScaled(GLdouble x, GLdouble y, GLdouble z);
+  void glFrustum(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f);
+  void glOrtho(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f);
+  void glClipPlane(GLenum plane, const GLdouble* equation);
+  // GLU helpers (computed with GLM, applied with glMultMatrixd semantics).
+  void gluPerspective(GLdouble fovy, GLdouble aspect, GLdouble z_near, GLdouble z_far);
+  void gluLookAt(GLdouble ex, GLdouble ey, GLdouble ez, GLdouble cx, GLdouble cy, GLdouble cz, GLdouble ux,
+                 GLdouble uy, GLdouble uz);
+
+  // ---- vertices (§2.6-2.7) ----
+  void glBegin(GLenum mode);
+  void glEnd();
+  void glVertex2f(GLfloat x, GLfloat y);
+  void glVertex3f(GLfloat x, GLfloat y, GLfloat z);
+  void glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w);
+  void glVertex2d(GLdouble x, GLdouble y);
+  void glVertex3d(GLdouble x, GLdouble y, GLdouble z);
+  void glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w);
+  void glVertex2fv(const GLfloat* v);
+  void glVertex3fv(const GLfloat* v);
+  void glVertex4fv(const GLfloat* v);
+  void glNormal3f(GLfloat x, GLfloat y, GLfloat z);
+  void glNormal3d(GLdouble x, GLdouble y, GLdouble z);
+  void glNormal3fv(const GLfloat* v);
+  void glColor3f(GLfloat r, GLfloat g, GLfloat b);
+  void glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
+  void glColor3d(GLdouble r, GLdouble g, GLdouble b);
+  void glColor4d(GLdouble r, GLdouble g, GLdouble b, GLdouble a);
+  void glColor3ub(GLubyte r, GLubyte g, GLubyte b);
+  void glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a);
+  void glColor3fv(const GLfloat* v);
+  void glColor4fv(const GLfloat* v);
+  void glTexCoord1f(GLfloat s);
+  void glTexCoord2f(GLfloat s, GLfloat t);
+  void glTexCoord3f(GLfloat s, GLfloat t, GLfloat r);
+  void glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q);
+  void glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q);
+  void glTexCoord2fv(const GLfloat* v);
+
+  // ---- vertex arrays (§2.8) ----
+  void glEnableClientState(GLenum array);
+  void glDisableClientState(GLenum array);
+  void glVertexPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
+  void glNormalPointer(GLenum type, GLsizei stride, const void* pointer);
+  void glColorPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
+  void glTexCoordPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
+  void glArrayElement(GLint i);
+  void glDrawArrays(GLenum mode, GLint first, GLsizei count);
+  void glDrawElements(GLenum mode, GLsizei count, GLenum type, const void* indices);
+
+  // ---- display lists (§5.4) ----
+  void glNewList(GLuint list, GLenum mode);
+  void glEndList();
+  void glCallList(GLuint list);
+  void glCallLists(GLsizei n, GLenum type, const void* lists);
+  GLuint glGenLists(GLsizei range);
+  void glDeleteLists(GLuint list, GLsizei range);
+  GLboolean glIsList(GLuint list);
+  void glListBase(GLuint base);
+
+  // ---- lighting (§2.13) ----
+  void glShadeModel(GLenum mode);
+  void glLightf(GLenum light, GLenum pname, GLfloat param);
+  void glLighti(GLenum light, GLenum pname, GLint param);
+  void glLightfv(GLenum light, GLenum pname, const GLfloat* params);
+  void glLightModelf(GLenum pname, GLfloat param);
+  void glLightModeli(GLenum pname, GLint param);
+  void glLightModelfv(GLenum pname, const GLfloat* params);
+  void glMaterialf(GLenum face, GLenum pname, GLfloat param);
+  void glMaterialfv(GLenum face, GLenum pname, const GLfloat* params);
+  void glColorMaterial(GLenum face, GLenum mode);
+
+  // ---- rasterization (§3.3-3.5) ----
+  void glCullFace(GLenum mode);
+  void glFrontFace(GLenum mode);
+  void glPolygonMode(GLenum face, GLenum mode);
+  void glPolygonOffset(GLfloat factor, GLfloat units);
+  void glPointSize(GLfloat size);
+  void glLineWidth(GLfloat width);
+
+  // ---- passes: EXT_debug_marker ----
+  void glPushGroupMarkerEXT(GLsizei length, const GLchar* marker);
+  void glPopGroupMarkerEXT();
+  void glInsertEventMarkerEXT(GLsizei length, const GLchar* marker);
+
+  // ---- window system (what glXSwapBuffers does) ----
+  void swap_buffers();
+
+  // ---- passim: inspection, recording, counters ----
+  const Framebuffer& framebuffer() const { return fb_; }
+  const FramebufferConfig& config() const { return fb_.config; }
+  const MachineProfile& profile() const { return profile_; }
+  const std::vector<Pass>& passes() const { return passes_; }
+  Counters total_counters() const;
+  const std::vector<GlErrorRecord>& error_log() const { return error_log_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  // Raises InternalError if any pass broke the fragment balance.
+  void check_balance() const;
+  void set_call_sink(CallSink* sink) { sink_ = sink; }
+  // "file:line" attached to GL errors raised from now on (trace replay).
+  void set_source_location(std::string where) { where_ = std::move(where); }
+  // The colour buffer a name (GL_FRONT/GL_BACK...) reads from; nullptr when absent.
+  const ColorPlane* color_buffer(GLenum which) const;
+  // Bytes behind a client-array pointer (set by the trace replayer for bounds checks).
+  void set_client_array_extent(GLenum array, std::size_t bytes);
+  // Bits of each fragment colour channel (A26: alpha carried at RGB precision when the
+  // framebuffer has fewer than 2 alpha bits).
+  const std::array<int, 4>& fragment_color_bits() const { return fragment_bits_; }
+
+  // Call-table plumbing (used by PASSIM_ENTRY; see calls.cpp).
+  struct CallScope {
+    explicit CallScope(Context& c) : ctx(c) { ++ctx.call_depth_; }
+    ~CallScope() { --ctx.call_depth_; }
+    bool outermost() const { return ctx.call_depth_ == 1; }
+    Context& ctx;
+  };
+  template <class... A>
+  bool intercept(const CallInfo& info, const A&... args);
+  // Array argument for recording: pointer and element count.
+  template <class T>
+  struct ArrayArg {
+    const T* data;
+    std::size_t count;
+  };
+  struct RawArrayArg {
+    const void* data;
+    GLenum type;
+    std::size_t count;
+  };
+
+ private:
+  friend class ContextTestAccess;
+  bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
+  void set_error(GLenum error);
+  bool set_capability(GLenum cap, bool value);
+  bool get_state(GLenum pname, std::vector<double>& out, bool& is_color) const;
+  std::vector<Mat4>& current_stack();
+  void mult_matrix(const Mat4& m);
+  void submit_vertex(const Vec4& object_position);
+  void emit_primitive_vertex(const ProcessedVertex& v);
+  void flush_polygon();
+  void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);
+  void draw_point(const ProcessedVertex& v);
+  void array_element_impl(int i);
+  void check_array_bounds(int max_index) const;
+  void compile_array_element(int i, std::vector<Call>& out) const;
+  void execute_list(GLuint list);
+  void set_light_param(GLenum light, GLenum pname, const double* v);
+  void set_material_param(GLenum face, GLenum pname, const double* v);
+  void set_light_model_param(GLenum pname, const double* v);
+  void update_fragment_bits();
+  Counters& counters();
+  // The colour buffers a DrawBuffer/ReadBuffer mode names; empty when one is missing.
+  std::vector<ColorBufferId> buffers_named(GLenum mode) const;
+  const Mat4& normal_matrix();
+  Vec4 array_value_at(const ClientArray& a, int i, bool normalise) const;
+  void record_client_arrays(int max_index);
+  void warn_once(const std::string& message);
+  void apply_color_material();
+  RasterVertex to_window(const ProcessedVertex& v, int face) const;
+
+  Framebuffer fb_;
+  MachineProfile profile_;
+  std::array<int, 4> fragment_bits_{};
+
+  // state (§6.2)
+  TransformState transform_;
+  ViewportState viewport_;
+  CurrentState current_;
+  LightingState lighting_;
+  PolygonState polygon_;
+  FragmentOpsState fragment_;
+  FramebufferControlState fb_control_;
+  PixelState pixel_;
+  ClientArrayState arrays_;
+  std::map<GLenum, bool> unmodelled_caps_;  // enables accepted and stored, not yet modelled
+  std::vector<ColorBufferId> draw_buffer_ids_;
+  Mat4 normal_matrix_{1.0};
+  bool normal_matrix_dirty_ = true;
+
+  // errors
+  GLenum error_ = GL_NO_ERROR;
+  std::vector<GlErrorRecord> error_log_;
+  std::vector<std::string> warnings_;
+  std::string where_;
+  const char* current_call_ = "";
+
+  // primitive assembly
+  bool in_begin_ = false;
+  GLenum begin_mode_ = GL_POINTS;
+  std::vector<ProcessedVertex> prim_vertices_;
+  std::uint64_t prim_vertex_count_ = 0;
+
+  // display lists
+  std::map<GLuint, std::vector<Call>> lists_;
+  GLuint list_base_ = 0;
+  GLuint compiling_list_ = 0;
+  GLenum compile_mode_ = 0;
+  std::vector<Call> compiling_calls_;
+  int list_nesting_ = 0;
+
+  // recording
+  CallSink* sink_ = nullptr;
+  int call_depth_ = 0;
+
+  // passes
+  std::vector<Pass> passes_;
+  std::vector<std::size_t> marker_stack_;  // indices into passes_
+  std::size_t current_pass_ = SIZE_MAX;
+
+  // stages' scratch (span buffers and the like)
+  struct Scratch;
+  std::unique_ptr<Scratch> scratch_;
+};
+
+}  // namespace passim
+
+namespace passim {
+namespace detail {
+
+template <class T>
+Value to_value(const T& v) {
+  Value out;
+  if constexpr (std::is_floating_point_v<T>) {
+    out.d = static_cast<double>(v);
+  } else if constexpr (std::is_integral_v<T>) {
+    out.i = static_cast<std::int64_t>(v);
+  } else if constexpr (std::is_same_v<T, const char*> || std::is_same_v<T, const GLchar*>) {
+    out.s = v ? v : "";
+  }
+  return out;
+}
+
+template <class T>
+constexpr GLenum gl_type_of() {
+  if constexpr (std::is_same_v<T, GLfloat>) return GL_FLOAT;
+  else if constexpr (std::is_same_v<T, GLdouble>) return GL_DOUBLE;
+  else if constexpr (std::is_same_v<T, GLint>) return GL_INT;
+  else if constexpr (std::is_same_v<T, GLuint>) return GL_UNSIGNED_INT;
+  else if constexpr (std::is_same_v<T, GLubyte>) return GL_UNSIGNED_BYTE;
+  else if constexpr (std::is_same_v<T, GLbyte>) return GL_BYTE;
+  else if constexpr (std::is_same_v<T, GLshort>) return GL_SHORT;
+  else if constexpr (std::is_same_v<T, GLushort>) return GL_UNSIGNED_SHORT;
+  else return 0;
+}
+
+Value array_value(const void* data, GLenum type, std::size_t count);
+
+template <class T>
+Value to_value(const Context::ArrayArg<T>& a) {
+  return array_value(a.data, gl_type_of<T>(), a.count);
+}
+inline Value to_value(const Context::RawArrayArg& a) { return array_value(a.data, a.type, a.count); }
+
+}  // namespace detail
+
+template <class... A>
+bool Context::intercept(const CallInfo& info, const A&... args) {
+  // Fast path: nothing records and no list is being compiled.
+  if (!sink_ && compiling_list_ == 0) return false;
+  std::vector<Value> values;
+  values.reserve(sizeof...(A));
+  (values.push_back(detail::to_value(args)), ...);
+  return intercept_values(info, std::move(values));
+}
+
+}  // namespace passim
+
+// Opening of every entry point: finds the call's table row once, records or
+// compiles the outermost call, and rejects calls not allowed between Begin/End.
+// Returns from the entry point (with `ret`) when the call must not execute now.
+#define PASSIM_ENTRY_RET(ret, ...)                                                           \
+  static const ::passim::CallInfo& passim_call_info_ = ::passim::call_info_or_die(__func__); \
+  ::passim::Context::CallScope passim_call_scope_(*this);                                    \
+  if (passim_call_scope_.outermost()) {                                                      \
+    current_call_ = __func__;                                                                \
+    if (intercept(passim_call_info_ __VA_OPT__(, ) __VA_ARGS__)) return ret;                 \
+  }                                                                                          \
+  if (in_begin_ && !passim_call_info_.allowed_in_begin_end) {                                \
+    set_error(GL_INVALID_OPERATION);                                                         \
+    return ret;                                                                              \
+  }
+#define PASSIM_ENTRY(...) PASSIM_ENTRY_RET(, __VA_ARGS__)

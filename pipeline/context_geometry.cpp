@@ -1,0 +1,891 @@
+// Context: coordinate transformation (§2.10), vertices and primitives (§2.6-2.8),
+// lighting state (§2.13), and the rasterization state of §3.3-3.5.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "pipeline/context.hpp"
+#include "pipeline/context_scratch.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "stages/clipping.hpp"
+#include "stages/lighting.hpp"
+#include "stages/rasterizer.hpp"
+
+namespace passim {
+
+// ---------------------------------------------------------------- matrices (§2.10.2)
+
+std::vector<Mat4>& Context::current_stack() {
+  switch (transform_.matrix_mode) {
+    case GL_PROJECTION: return transform_.projection;
+    case GL_TEXTURE: return transform_.texture;
+    case GL_COLOR: return transform_.color;
+    default: return transform_.modelview;
+  }
+}
+
+void Context::mult_matrix(const Mat4& m) {
+  current_stack().back() = current_stack().back() * m;
+  normal_matrix_dirty_ = true;
+}
+
+namespace {
+template <class T>
+Mat4 matrix_from(const T* m) {
+  Mat4 r;
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row) r[c][row] = static_cast<double>(m[4 * c + row]);
+  return r;
+}
+}  // namespace
+
+void Context::glViewport(GLint x, GLint y, GLsizei width, GLsizei height) {
+  PASSIM_ENTRY(x, y, width, height)
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  // §2.10.1: width and height are silently clamped to MAX_VIEWPORT_DIMS.
+  viewport_.x = x;
+  viewport_.y = y;
+  viewport_.width = std::min(width, profile_.limits.max_viewport_size);
+  viewport_.height = std::min(height, profile_.limits.max_viewport_size);
+}
+
+void Context::glDepthRange(GLclampd near_val, GLclampd far_val) {
+  PASSIM_ENTRY(near_val, far_val)
+  viewport_.near_val = clamp_nan_low(near_val, 0.0, 1.0);
+  viewport_.far_val = clamp_nan_low(far_val, 0.0, 1.0);
+}
+
+void Context::glMatrixMode(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (mode != GL_MODELVIEW && mode != GL_PROJECTION && mode != GL_TEXTURE && mode != GL_COLOR)
+    return set_error(GL_INVALID_ENUM);
+  transform_.matrix_mode = mode;
+}
+
+void Context::glLoadIdentity() {
+  PASSIM_ENTRY()
+  current_stack().back() = Mat4(1.0);
+  normal_matrix_dirty_ = true;
+}
+
+void Context::glLoadMatrixf(const GLfloat* m) {
+  PASSIM_ENTRY(ArrayArg<GLfloat>{m, 16})
+  current_stack().back() = matrix_from(m);
+  normal_matrix_dirty_ = true;
+}
+
+void Context::glLoadMatrixd(const GLdouble* m) {
+  PASSIM_ENTRY(ArrayArg<GLdouble>{m, 16})
+  current_stack().back() = matrix_from(m);
+  normal_matrix_dirty_ = true;
+}
+
+void Context::glMultMatrixf(const GLfloat* m) {
+  PASSIM_ENTRY(ArrayArg<GLfloat>{m, 16})
+  mult_matrix(matrix_from(m));
+}
+
+void Context::glMultMatrixd(const GLdouble* m) {
+  PASSIM_ENTRY(ArrayArg<GLdouble>{m, 16})
+  mult_matrix(matrix_from(m));
+}
+
+void Context::glPushMatrix() {
+  PASSIM_ENTRY()
+  std::vector<Mat4>& stack = current_stack();
+  const MachineLimits& lim = profile_.limits;
+  int max = lim.max_modelview_stack;
+  if (transform_.matrix_mode == GL_PROJECTION) max = lim.max_projection_stack;
+  if (transform_.matrix_mode == GL_TEXTURE) max = lim.max_texture_stack;
+  if (transform_.matrix_mode == GL_COLOR) max = lim.max_color_matrix_stack;
+  if (static_cast<int>(stack.size()) >= max) return set_error(GL_STACK_OVERFLOW);
+  stack.push_back(stack.back());
+}
+
+void Context::glPopMatrix() {
+  PASSIM_ENTRY()
+  std::vector<Mat4>& stack = current_stack();
+  if (stack.size() <= 1) return set_error(GL_STACK_UNDERFLOW);
+  stack.pop_back();
+  normal_matrix_dirty_ = true;
+}
+
+void Context::glTranslatef(GLfloat x, GLfloat y, GLfloat z) {
+  PASSIM_ENTRY(x, y, z)
+  mult_matrix(glm::translate(Mat4(1.0), Vec3(x, y, z)));
+}
+
+void Context::glTranslated(GLdouble x, GLdouble y, GLdouble z) {
+  PASSIM_ENTRY(x, y, z)
+  mult_matrix(glm::translate(Mat4(1.0), Vec3(x, y, z)));
+}
+
+void Context::glRotatef(GLfloat angle, GLfloat x, GLfloat y, GLfloat z) {
+  PASSIM_ENTRY(angle, x, y, z)
+  if (x == 0.0f && y == 0.0f && z == 0.0f) return;  // no axis: no rotation (GLM would divide by 0)
+  mult_matrix(glm::rotate(Mat4(1.0), glm::radians(static_cast<double>(angle)), Vec3(x, y, z)));
+}
+
+void Context::glRotated(GLdouble angle, GLdouble x, GLdouble y, GLdouble z) {
+  PASSIM_ENTRY(angle, x, y, z)
+  if (x == 0.0 && y == 0.0 && z == 0.0) return;
+  mult_matrix(glm::rotate(Mat4(1.0), glm::radians(angle), Vec3(x, y, z)));
+}
+
+void Context::glScalef(GLfloat x, GLfloat y, GLfloat z) {
+  PASSIM_ENTRY(x, y, z)
+  mult_matrix(glm::scale(Mat4(1.0), Vec3(x, y, z)));
+}
+
+void Context::glScaled(GLdouble x, GLdouble y, GLdouble z) {
+  PASSIM_ENTRY(x, y, z)
+  mult_matrix(glm::scale(Mat4(1.0), Vec3(x, y, z)));
+}
+
+void Context::glFrustum(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f) {
+  PASSIM_ENTRY(l, r, b, t, n, f)
+  if (n <= 0.0 || f <= 0.0 || l == r || b == t || n == f) return set_error(GL_INVALID_VALUE);
+  mult_matrix(glm::frustum(l, r, b, t, n, f));
+}
+
+void Context::glOrtho(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f) {
+  PASSIM_ENTRY(l, r, b, t, n, f)
+  if (l == r || b == t || n == f) return set_error(GL_INVALID_VALUE);
+  mult_matrix(glm::ortho(l, r, b, t, n, f));
+}
+
+void Context::gluPerspective(GLdouble fovy, GLdouble aspect, GLdouble z_near, GLdouble z_far) {
+  PASSIM_ENTRY(fovy, aspect, z_near, z_far)
+  // GLU does nothing for degenerate arguments; so do we.
+  if (z_near == z_far || aspect == 0.0 || std::sin(glm::radians(fovy) / 2.0) == 0.0) return;
+  mult_matrix(glm::perspective(glm::radians(fovy), aspect, z_near, z_far));
+}
+
+void Context::gluLookAt(GLdouble ex, GLdouble ey, GLdouble ez, GLdouble cx, GLdouble cy, GLdouble cz, GLdouble ux,
+                        GLdouble uy, GLdouble uz) {
+  PASSIM_ENTRY(ex, ey, ez, cx, cy, cz, ux, uy, uz)
+  mult_matrix(glm::lookAt(Vec3(ex, ey, ez), Vec3(cx, cy, cz), Vec3(ux, uy, uz)));
+}
+
+void Context::glClipPlane(GLenum plane, const GLdouble* equation) {
+  PASSIM_ENTRY(plane, ArrayArg<GLdouble>{equation, 4})
+  if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + 6) return set_error(GL_INVALID_ENUM);
+  // §2.11: the plane is transformed by the inverse of the modelview matrix at this call.
+  const Vec4 p(equation[0], equation[1], equation[2], equation[3]);
+  transform_.clip_plane[plane - GL_CLIP_PLANE0] = p * glm::inverse(transform_.modelview.back());
+}
+
+const Mat4& Context::normal_matrix() {
+  if (normal_matrix_dirty_) {
+    normal_matrix_ = glm::inverse(transform_.modelview.back());
+    normal_matrix_dirty_ = false;
+  }
+  return normal_matrix_;
+}
+
+// ---------------------------------------------------------------- current values (§2.7)
+
+void Context::apply_color_material() {
+  if (!lighting_.color_material) return;
+  const GLenum face = lighting_.color_material_face;
+  for (int f = 0; f < 2; ++f) {
+    if ((f == 0 && face == GL_BACK) || (f == 1 && face == GL_FRONT)) continue;
+    Material& m = lighting_.material[f];
+    switch (lighting_.color_material_mode) {
+      case GL_EMISSION: m.emission = current_.color; break;
+      case GL_AMBIENT: m.ambient = current_.color; break;
+      case GL_DIFFUSE: m.diffuse = current_.color; break;
+      case GL_SPECULAR: m.specular = current_.color; break;
+      default: m.ambient = m.diffuse = current_.color; break;
+    }
+  }
+}
+
+#define PASSIM_SET_COLOR(r, g, b, a)            \
+  current_.color = Vec4((r), (g), (b), (a));    \
+  apply_color_material();
+
+void Context::glColor3f(GLfloat r, GLfloat g, GLfloat b) { PASSIM_ENTRY(r, g, b) PASSIM_SET_COLOR(r, g, b, 1.0) }
+void Context::glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a) { PASSIM_ENTRY(r, g, b, a) PASSIM_SET_COLOR(r, g, b, a) }
+void Context::glColor3d(GLdouble r, GLdouble g, GLdouble b) { PASSIM_ENTRY(r, g, b) PASSIM_SET_COLOR(r, g, b, 1.0) }
+void Context::glColor4d(GLdouble r, GLdouble g, GLdouble b, GLdouble a) { PASSIM_ENTRY(r, g, b, a) PASSIM_SET_COLOR(r, g, b, a) }
+// Table 2.6: unsigned bytes map to c / 255.
+void Context::glColor3ub(GLubyte r, GLubyte g, GLubyte b) {
+  PASSIM_ENTRY(r, g, b)
+  PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, 1.0)
+}
+void Context::glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a) {
+  PASSIM_ENTRY(r, g, b, a)
+  PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, a / 255.0)
+}
+void Context::glColor3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
+void Context::glColor4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
+#undef PASSIM_SET_COLOR
+
+void Context::glNormal3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
+void Context::glNormal3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
+void Context::glNormal3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) current_.normal = Vec3(v[0], v[1], v[2]); }
+
+void Context::glTexCoord1f(GLfloat s) { PASSIM_ENTRY(s) current_.texcoord = Vec4(s, 0.0, 0.0, 1.0); }
+void Context::glTexCoord2f(GLfloat s, GLfloat t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
+void Context::glTexCoord3f(GLfloat s, GLfloat t, GLfloat r) { PASSIM_ENTRY(s, t, r) current_.texcoord = Vec4(s, t, r, 1.0); }
+void Context::glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
+void Context::glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
+void Context::glTexCoord2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
+
+// ---------------------------------------------------------------- vertices and primitives
+
+void Context::glVertex2f(GLfloat x, GLfloat y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
+void Context::glVertex3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
+void Context::glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
+void Context::glVertex2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
+void Context::glVertex3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
+void Context::glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
+void Context::glVertex2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
+void Context::glVertex4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) submit_vertex(Vec4(v[0], v[1], v[2], v[3])); }
+
+namespace {
+bool is_primitive_mode(GLenum mode) { return mode <= GL_POLYGON; }
+}  // namespace
+
+void Context::glBegin(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
+  in_begin_ = true;
+  begin_mode_ = mode;
+  prim_vertices_.clear();
+  prim_vertex_count_ = 0;
+}
+
+void Context::glEnd() {
+  PASSIM_ENTRY()
+  if (!in_begin_) return set_error(GL_INVALID_OPERATION);
+  if (begin_mode_ == GL_POLYGON && prim_vertices_.size() >= 3) {
+    std::vector<const ProcessedVertex*> ptrs;
+    for (const auto& v : prim_vertices_) ptrs.push_back(&v);
+    draw_polygon(ptrs.data(), static_cast<int>(ptrs.size()), prim_vertices_.front());
+  }
+  in_begin_ = false;
+  prim_vertices_.clear();
+}
+
+void Context::submit_vertex(const Vec4& object) {
+  if (!in_begin_) return;  // §2.6.3: Vertex outside Begin/End is undefined; it is ignored here
+  Counters& c = counters();
+  ++c.vertices;
+  ProcessedVertex v;
+  v.eye = transform_.modelview.back() * object;
+  v.clip = transform_.projection.back() * v.eye;
+  if (lighting_.enabled) {
+    // §2.10.3: normals transform by the inverse transpose of the modelview's upper 3x3.
+    const Mat4& inv = normal_matrix();
+    Vec3 n = Vec3(current_.normal.x * inv[0][0] + current_.normal.y * inv[0][1] + current_.normal.z * inv[0][2],
+                  current_.normal.x * inv[1][0] + current_.normal.y * inv[1][1] + current_.normal.z * inv[1][2],
+                  current_.normal.x * inv[2][0] + current_.normal.y * inv[2][1] + current_.normal.z * inv[2][2]);
+    if (transform_.normalize) {
+      const double len = std::sqrt(glm::dot(n, n));
+      if (len > 0.0) n /= len;
+    } else if (transform_.rescale_normal) {
+      const double f = 1.0 / std::sqrt(inv[0][2] * inv[0][2] + inv[1][2] * inv[1][2] + inv[2][2] * inv[2][2]);
+      n *= f;
+    }
+    const int faces = lighting_.two_side ? 2 : 1;
+    for (int f = 0; f < faces; ++f) {
+      LitColor lit = light_vertex(lighting_, lighting_.material[f], v.eye, f == 0 ? n : -n);
+      ++c.lighting_evaluations;
+      // §2.13.6 clamp, A4 quantise; no texturing yet, so the colour sum happens here.
+      for (int k = 0; k < 4; ++k) {
+        double value = lit.primary[k] + (k < 3 ? lit.secondary[k] : 0.0);
+        v.color[f][k] = quantise(value, fragment_bits_[k]);
+      }
+    }
+    if (faces == 1) v.color[1] = v.color[0];
+  } else {
+    for (int k = 0; k < 4; ++k) v.color[0][k] = quantise(current_.color[k], fragment_bits_[k]);
+    v.color[1] = v.color[0];
+  }
+  v.tex = transform_.texture.back() * current_.texcoord;
+  emit_primitive_vertex(v);
+}
+
+void Context::emit_primitive_vertex(const ProcessedVertex& v) {
+  const std::uint64_t i = prim_vertex_count_++;
+  auto& buf = prim_vertices_;
+  switch (begin_mode_) {
+    case GL_POINTS: draw_point(v); return;
+    case GL_LINES: case GL_LINE_STRIP: case GL_LINE_LOOP:
+      warn_once("line primitives are not rasterized yet: they produce no fragments");
+      if (begin_mode_ == GL_LINES ? (i % 2 == 1) : i >= 1) ++counters().primitives_in;
+      return;
+    case GL_TRIANGLES: {
+      buf.push_back(v);
+      if (buf.size() == 3) {
+        const ProcessedVertex* p[3] = {&buf[0], &buf[1], &buf[2]};
+        draw_polygon(p, 3, buf[2]);
+        buf.clear();
+      }
+      return;
+    }
+    case GL_TRIANGLE_STRIP: {
+      buf.push_back(v);
+      if (buf.size() == 3) {
+        // §2.6.1: triangle i is (i, i+1, i+2), with the first two swapped for odd i
+        // so that every triangle keeps the strip's orientation.
+        const ProcessedVertex* p[3] = {&buf[0], &buf[1], &buf[2]};
+        if (i % 2 == 1) std::swap(p[0], p[1]);
+        draw_polygon(p, 3, buf[2]);
+        buf.erase(buf.begin());
+      }
+      return;
+    }
+    case GL_TRIANGLE_FAN: {
+      buf.push_back(v);
+      if (buf.size() == 3) {
+        const ProcessedVertex* p[3] = {&buf[0], &buf[1], &buf[2]};
+        draw_polygon(p, 3, buf[2]);
+        buf.erase(buf.begin() + 1);
+      }
+      return;
+    }
+    case GL_QUADS: {
+      buf.push_back(v);
+      if (buf.size() == 4) {
+        const ProcessedVertex* p[4] = {&buf[0], &buf[1], &buf[2], &buf[3]};
+        draw_polygon(p, 4, buf[3]);
+        buf.clear();
+      }
+      return;
+    }
+    case GL_QUAD_STRIP: {
+      buf.push_back(v);
+      if (buf.size() == 4) {
+        // §2.6.1: quad j is (2j, 2j+1, 2j+3, 2j+2); the provoking vertex is 2j+3.
+        const ProcessedVertex* p[4] = {&buf[0], &buf[1], &buf[3], &buf[2]};
+        draw_polygon(p, 4, buf[3]);
+        buf.erase(buf.begin(), buf.begin() + 2);
+      }
+      return;
+    }
+    default:  // GL_POLYGON: drawn at End
+      buf.push_back(v);
+      return;
+  }
+}
+
+RasterVertex Context::to_window(const ProcessedVertex& v, int face) const {
+  // §2.10.1: viewport transformation of normalised device coordinates.
+  RasterVertex r;
+  const double iw = 1.0 / v.clip.w;
+  const double half_w = viewport_.width / 2.0, half_h = viewport_.height / 2.0;
+  r.x = (v.clip.x * iw) * half_w + (viewport_.x + half_w);
+  r.y = (v.clip.y * iw) * half_h + (viewport_.y + half_h);
+  const double n = viewport_.near_val, f = viewport_.far_val;
+  r.z = (v.clip.z * iw) * ((f - n) / 2.0) + (n + f) / 2.0;
+  r.w = v.clip.w;
+  r.color = v.color[face];
+  return r;
+}
+
+namespace {
+ClipPlanes clip_planes_of(const TransformState& t) {
+  ClipPlanes planes;
+  planes.user = t.clip_plane;
+  for (int k = 0; k < 6; ++k)
+    if (t.clip_enabled[k]) planes.user_enabled |= 1u << k;
+  return planes;
+}
+bool finite_vertex(const ProcessedVertex& v) {
+  return std::isfinite(v.clip.x) && std::isfinite(v.clip.y) && std::isfinite(v.clip.z) && std::isfinite(v.clip.w) &&
+         std::isfinite(v.eye.x) && std::isfinite(v.eye.y) && std::isfinite(v.eye.z) && std::isfinite(v.eye.w);
+}
+}  // namespace
+
+void Context::draw_point(const ProcessedVertex& v) {
+  Counters& c = counters();
+  ++c.primitives_in;
+  if (!finite_vertex(v)) {
+    warn_once("a vertex with NaN or infinite coordinates was dropped (its primitive is counted as clipped out)");
+    ++c.primitives_clipped_out;
+    return;
+  }
+  if (!point_inside(v, clip_planes_of(transform_))) {
+    ++c.primitives_clipped_out;
+    return;
+  }
+  RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits, fb_.config.depth_bits,
+                      fragment_bits_};
+  rasterize_point(to_window(v, 0), polygon_.point_size, target, scratch_->spans, scratch_->fragment_ops, c);
+}
+
+void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
+  Counters& c = counters();
+  ++c.primitives_in;
+  std::vector<ProcessedVertex>& poly = scratch_->polygon;
+  poly.clear();
+  for (int k = 0; k < count; ++k) {
+    if (!finite_vertex(*vertices[k])) {
+      warn_once("a vertex with NaN or infinite coordinates was dropped (its primitive is counted as clipped out)");
+      ++c.primitives_clipped_out;
+      return;
+    }
+    poly.push_back(*vertices[k]);
+  }
+  bool cut = false;
+  if (!clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut)) {
+    ++c.primitives_clipped_out;
+    return;
+  }
+  if (cut) ++c.primitives_clipped;
+
+  // Window coordinates, then facing from the signed area (§3.5.1, eq. 3.6).
+  std::vector<RasterVertex> win(poly.size());
+  for (std::size_t k = 0; k < poly.size(); ++k) win[k] = to_window(poly[k], 0);
+  double area = 0.0;
+  for (std::size_t k = 0; k < win.size(); ++k) {
+    const RasterVertex& a = win[k];
+    const RasterVertex& b = win[(k + 1) % win.size()];
+    area += a.x * b.y - b.x * a.y;
+  }
+  const bool front = (polygon_.front_face == GL_CCW) ? area > 0.0 : area < 0.0;
+  if (polygon_.cull_enabled &&
+      (polygon_.cull_face == GL_FRONT_AND_BACK || (front ? polygon_.cull_face == GL_FRONT : polygon_.cull_face == GL_BACK))) {
+    ++c.primitives_culled;
+    return;
+  }
+  const int face = (lighting_.enabled && lighting_.two_side && !front) ? 1 : 0;
+  if (face == 1)
+    for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
+
+  const RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
+                            fb_.config.depth_bits, fragment_bits_};
+  const GLenum mode = front ? polygon_.mode_front : polygon_.mode_back;
+  if (mode == GL_POINT) {
+    for (const RasterVertex& w : win)
+      rasterize_point(w, polygon_.point_size, target, scratch_->spans, scratch_->fragment_ops, c);
+    return;
+  }
+  if (mode == GL_LINE) {
+    warn_once("glPolygonMode(GL_LINE) is not rasterized yet: such polygons produce no fragments");
+    return;
+  }
+  TriangleOptions options;
+  options.flat = lighting_.shade_model == GL_FLAT;
+  options.flat_color = provoking.color[face];
+  options.offset = polygon_.offset_fill;
+  options.offset_factor = polygon_.offset_factor;
+  options.offset_units = polygon_.offset_units;
+  // §3.5.1: a convex polygon may be decomposed; a fan from the first vertex.
+  for (std::size_t k = 1; k + 1 < win.size(); ++k)
+    rasterize_triangle(win[0], win[k], win[k + 1], options, target, scratch_->spans, scratch_->fragment_ops, c);
+}
+
+// ---------------------------------------------------------------- vertex arrays (§2.8)
+
+namespace {
+ClientArray* array_of(ClientArrayState& s, GLenum a) {
+  switch (a) {
+    case GL_VERTEX_ARRAY: return &s.vertex;
+    case GL_NORMAL_ARRAY: return &s.normal;
+    case GL_COLOR_ARRAY: return &s.color;
+    case GL_TEXTURE_COORD_ARRAY: return &s.texcoord;
+    default: return nullptr;
+  }
+}
+bool is_array_type(GLenum type, bool allow_unsigned, bool allow_byte) {
+  switch (type) {
+    case GL_SHORT: case GL_INT: case GL_FLOAT: case GL_DOUBLE: return true;
+    case GL_BYTE: return allow_byte;
+    case GL_UNSIGNED_BYTE: case GL_UNSIGNED_SHORT: case GL_UNSIGNED_INT: return allow_unsigned;
+    default: return false;
+  }
+}
+}  // namespace
+
+void Context::glEnableClientState(GLenum array) {
+  PASSIM_ENTRY(array)
+  ClientArray* a = array_of(arrays_, array);
+  if (!a) return set_error(GL_INVALID_ENUM);
+  a->enabled = true;
+}
+
+void Context::glDisableClientState(GLenum array) {
+  PASSIM_ENTRY(array)
+  ClientArray* a = array_of(arrays_, array);
+  if (!a) return set_error(GL_INVALID_ENUM);
+  a->enabled = false;
+}
+
+#define PASSIM_SET_POINTER(member, size_, type_, stride_, ptr_) \
+  arrays_.member.size = (size_);                                 \
+  arrays_.member.type = (type_);                                 \
+  arrays_.member.stride = (stride_);                             \
+  arrays_.member.pointer = (ptr_);                               \
+  arrays_.member.extent = SIZE_MAX;
+
+void Context::glVertexPointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  PASSIM_ENTRY()
+  if (size < 2 || size > 4 || stride < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_array_type(type, false, false)) return set_error(GL_INVALID_ENUM);
+  PASSIM_SET_POINTER(vertex, size, type, stride, pointer)
+}
+
+void Context::glNormalPointer(GLenum type, GLsizei stride, const void* pointer) {
+  PASSIM_ENTRY()
+  if (stride < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_array_type(type, false, true)) return set_error(GL_INVALID_ENUM);
+  PASSIM_SET_POINTER(normal, 3, type, stride, pointer)
+}
+
+void Context::glColorPointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  PASSIM_ENTRY()
+  if (size < 3 || size > 4 || stride < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_array_type(type, true, true)) return set_error(GL_INVALID_ENUM);
+  PASSIM_SET_POINTER(color, size, type, stride, pointer)
+}
+
+void Context::glTexCoordPointer(GLint size, GLenum type, GLsizei stride, const void* pointer) {
+  PASSIM_ENTRY()
+  if (size < 1 || size > 4 || stride < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_array_type(type, false, false)) return set_error(GL_INVALID_ENUM);
+  PASSIM_SET_POINTER(texcoord, size, type, stride, pointer)
+}
+#undef PASSIM_SET_POINTER
+
+Vec4 Context::array_value_at(const ClientArray& a, int i, bool normalise) const {
+  // Reads element i; with `normalise`, integer components map to [0,1] or [-1,1] (Table 2.6).
+  const int ts = type_size(a.type);
+  const std::size_t stride = a.stride ? static_cast<std::size_t>(a.stride) : static_cast<std::size_t>(ts * a.size);
+  const std::byte* p = static_cast<const std::byte*>(a.pointer) + stride * static_cast<std::size_t>(i);
+  Vec4 out(0.0, 0.0, 0.0, 1.0);
+  for (int k = 0; k < a.size; ++k) {
+    const std::byte* e = p + k * ts;
+    double v = 0.0;
+    switch (a.type) {
+      case GL_FLOAT: { float f; std::memcpy(&f, e, 4); v = f; break; }
+      case GL_DOUBLE: { std::memcpy(&v, e, 8); break; }
+      case GL_INT: { std::int32_t x; std::memcpy(&x, e, 4); v = normalise ? (2.0 * x + 1.0) / 4294967295.0 : x; break; }
+      case GL_UNSIGNED_INT: { std::uint32_t x; std::memcpy(&x, e, 4); v = normalise ? x / 4294967295.0 : x; break; }
+      case GL_SHORT: { std::int16_t x; std::memcpy(&x, e, 2); v = normalise ? (2.0 * x + 1.0) / 65535.0 : x; break; }
+      case GL_UNSIGNED_SHORT: { std::uint16_t x; std::memcpy(&x, e, 2); v = normalise ? x / 65535.0 : x; break; }
+      case GL_BYTE: { std::int8_t x; std::memcpy(&x, e, 1); v = normalise ? (2.0 * x + 1.0) / 255.0 : x; break; }
+      case GL_UNSIGNED_BYTE: { std::uint8_t x; std::memcpy(&x, e, 1); v = normalise ? x / 255.0 : x; break; }
+      default: break;
+    }
+    out[k] = v;
+  }
+  return out;
+}
+
+void Context::check_array_bounds(int max_index) const {
+  auto check = [&](const ClientArray& a, const char* name) {
+    if (!a.enabled || a.extent == SIZE_MAX) return;
+    const std::size_t elem = static_cast<std::size_t>(type_size(a.type) * a.size);
+    const std::size_t stride = a.stride ? static_cast<std::size_t>(a.stride) : elem;
+    const std::size_t need = static_cast<std::size_t>(max_index) * stride + elem;
+    if (!a.pointer || need > a.extent)
+      throw ClientDataError(fmt::format("{} reads element {} of the {} array, but only {} bytes were given",
+                                        current_call_, max_index, name, a.extent));
+  };
+  check(arrays_.vertex, "vertex");
+  check(arrays_.normal, "normal");
+  check(arrays_.color, "color");
+  check(arrays_.texcoord, "texture coordinate");
+}
+
+void Context::array_element_impl(int i) {
+  // §2.8: ArrayElement is the sequence of Normal, Color, TexCoord and (last) Vertex calls.
+  if (arrays_.normal.enabled) {
+    Vec4 n = array_value_at(arrays_.normal, i, true);
+    glNormal3d(n.x, n.y, n.z);
+  }
+  if (arrays_.color.enabled) {
+    Vec4 c = array_value_at(arrays_.color, i, true);
+    glColor4d(c.r, c.g, c.b, c.a);
+  }
+  if (arrays_.texcoord.enabled) {
+    Vec4 t = array_value_at(arrays_.texcoord, i, false);
+    glTexCoord4d(t.x, t.y, t.z, t.w);
+  }
+  if (arrays_.vertex.enabled) {
+    Vec4 v = array_value_at(arrays_.vertex, i, false);
+    glVertex4d(v.x, v.y, v.z, v.w);
+  }
+}
+
+void Context::compile_array_element(int i, std::vector<Call>& out) const {
+  auto add = [&](const char* name, Vec4 v, int n) {
+    Call call{find_call(name), {}};
+    for (int k = 0; k < n; ++k) {
+      Value x;
+      x.d = v[k];
+      call.args.push_back(x);
+    }
+    out.push_back(std::move(call));
+  };
+  check_array_bounds(i);
+  if (arrays_.normal.enabled) add("glNormal3d", array_value_at(arrays_.normal, i, true), 3);
+  if (arrays_.color.enabled) add("glColor4d", array_value_at(arrays_.color, i, true), 4);
+  if (arrays_.texcoord.enabled) add("glTexCoord4d", array_value_at(arrays_.texcoord, i, false), 4);
+  if (arrays_.vertex.enabled) add("glVertex4d", array_value_at(arrays_.vertex, i, false), 4);
+}
+
+void Context::record_client_arrays(int max_index) {
+  // Emits glXxxPointer calls carrying the elements 0..max_index, tightly packed.
+  check_array_bounds(max_index);
+  auto emit = [&](const ClientArray& a, const char* name, bool has_size) {
+    if (!a.enabled || !a.pointer) return;
+    const int ts = type_size(a.type);
+    const std::size_t elem = static_cast<std::size_t>(ts * a.size);
+    const std::size_t stride = a.stride ? static_cast<std::size_t>(a.stride) : elem;
+    std::vector<std::byte> packed(elem * static_cast<std::size_t>(max_index + 1));
+    for (int k = 0; k <= max_index; ++k)
+      std::memcpy(packed.data() + elem * k, static_cast<const std::byte*>(a.pointer) + stride * k, elem);
+    Call call{find_call(name), {}};
+    Value size, type, zero, data;
+    size.i = a.size;
+    type.i = a.type;
+    data = detail::array_value(packed.data(), a.type, static_cast<std::size_t>(a.size) * (max_index + 1));
+    if (has_size) call.args.push_back(size);
+    call.args.push_back(type);
+    call.args.push_back(zero);
+    call.args.push_back(data);
+    sink_->on_call(call);
+  };
+  emit(arrays_.vertex, "glVertexPointer", true);
+  emit(arrays_.normal, "glNormalPointer", false);
+  emit(arrays_.color, "glColorPointer", true);
+  emit(arrays_.texcoord, "glTexCoordPointer", true);
+}
+
+void Context::glArrayElement(GLint i) {
+  PASSIM_ENTRY(i)
+  if (i < 0) return;
+  check_array_bounds(i);
+  array_element_impl(i);
+}
+
+void Context::glDrawArrays(GLenum mode, GLint first, GLsizei count) {
+  PASSIM_ENTRY(mode, first, count)
+  if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
+  if (count < 0 || first < 0) return set_error(GL_INVALID_VALUE);
+  if (count == 0) return;
+  check_array_bounds(first + count - 1);
+  glBegin(mode);
+  for (GLint k = 0; k < count; ++k) array_element_impl(first + k);
+  glEnd();
+}
+
+void Context::glDrawElements(GLenum mode, GLsizei count, GLenum type, const void* indices) {
+  PASSIM_ENTRY(mode, count, type, RawArrayArg{indices, type, count > 0 ? static_cast<std::size_t>(count) : 0u})
+  if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
+  if (type != GL_UNSIGNED_BYTE && type != GL_UNSIGNED_SHORT && type != GL_UNSIGNED_INT)
+    return set_error(GL_INVALID_ENUM);
+  if (count < 0) return set_error(GL_INVALID_VALUE);
+  if (count == 0 || !indices) return;
+  std::vector<int> idx(static_cast<std::size_t>(count));
+  int max_index = 0;
+  for (GLsizei k = 0; k < count; ++k) {
+    std::uint32_t v;
+    if (type == GL_UNSIGNED_BYTE) v = static_cast<const std::uint8_t*>(indices)[k];
+    else if (type == GL_UNSIGNED_SHORT) v = static_cast<const std::uint16_t*>(indices)[k];
+    else v = static_cast<const std::uint32_t*>(indices)[k];
+    idx[static_cast<std::size_t>(k)] = static_cast<int>(v);
+    max_index = std::max(max_index, static_cast<int>(v));
+  }
+  check_array_bounds(max_index);
+  glBegin(mode);
+  for (int i : idx) array_element_impl(i);
+  glEnd();
+}
+
+// ---------------------------------------------------------------- lighting state (§2.13)
+
+void Context::glShadeModel(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (mode != GL_FLAT && mode != GL_SMOOTH) return set_error(GL_INVALID_ENUM);
+  lighting_.shade_model = mode;
+}
+
+void Context::set_light_param(GLenum light, GLenum pname, const double* v) {
+  if (light < GL_LIGHT0 || light >= GL_LIGHT0 + lighting_.lights.size()) return set_error(GL_INVALID_ENUM);
+  Light& L = lighting_.lights[light - GL_LIGHT0];
+  switch (pname) {
+    case GL_AMBIENT: L.ambient = Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_DIFFUSE: L.diffuse = Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_SPECULAR: L.specular = Vec4(v[0], v[1], v[2], v[3]); break;
+    // §2.13.2: position and direction are transformed by the modelview matrix now.
+    case GL_POSITION: L.position = transform_.modelview.back() * Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_SPOT_DIRECTION: L.spot_direction = glm::dmat3(transform_.modelview.back()) * Vec3(v[0], v[1], v[2]); break;
+    case GL_SPOT_EXPONENT:
+      if (v[0] < 0.0 || v[0] > 128.0) return set_error(GL_INVALID_VALUE);
+      L.spot_exponent = v[0];
+      break;
+    case GL_SPOT_CUTOFF:
+      if ((v[0] < 0.0 || v[0] > 90.0) && v[0] != 180.0) return set_error(GL_INVALID_VALUE);
+      L.spot_cutoff = v[0];
+      break;
+    case GL_CONSTANT_ATTENUATION:
+    case GL_LINEAR_ATTENUATION:
+    case GL_QUADRATIC_ATTENUATION:
+      if (v[0] < 0.0) return set_error(GL_INVALID_VALUE);
+      (pname == GL_CONSTANT_ATTENUATION ? L.constant_attenuation
+       : pname == GL_LINEAR_ATTENUATION ? L.linear_attenuation
+                                        : L.quadratic_attenuation) = v[0];
+      break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glLightf(GLenum light, GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(light, pname, param)
+  if (pname_count(pname) != 1) return set_error(GL_INVALID_ENUM);
+  const double v = param;
+  set_light_param(light, pname, &v);
+}
+
+void Context::glLighti(GLenum light, GLenum pname, GLint param) {
+  PASSIM_ENTRY(light, pname, param)
+  if (pname_count(pname) != 1) return set_error(GL_INVALID_ENUM);
+  const double v = param;
+  set_light_param(light, pname, &v);
+}
+
+void Context::glLightfv(GLenum light, GLenum pname, const GLfloat* params) {
+  const int n = pname_count(pname);
+  PASSIM_ENTRY(light, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  if (n == 0) return set_error(GL_INVALID_ENUM);
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_light_param(light, pname, v);
+}
+
+void Context::set_light_model_param(GLenum pname, const double* v) {
+  switch (pname) {
+    case GL_LIGHT_MODEL_AMBIENT: lighting_.model_ambient = Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_LIGHT_MODEL_LOCAL_VIEWER: lighting_.local_viewer = v[0] != 0.0; break;
+    case GL_LIGHT_MODEL_TWO_SIDE: lighting_.two_side = v[0] != 0.0; break;
+    case GL_LIGHT_MODEL_COLOR_CONTROL: {
+      const GLenum c = static_cast<GLenum>(v[0]);
+      if (c != GL_SINGLE_COLOR && c != GL_SEPARATE_SPECULAR_COLOR) return set_error(GL_INVALID_ENUM);
+      lighting_.color_control = c;
+      break;
+    }
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glLightModelf(GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(pname, param)
+  if (pname == GL_LIGHT_MODEL_AMBIENT) return set_error(GL_INVALID_ENUM);
+  const double v = param;
+  set_light_model_param(pname, &v);
+}
+
+void Context::glLightModeli(GLenum pname, GLint param) {
+  PASSIM_ENTRY(pname, param)
+  if (pname == GL_LIGHT_MODEL_AMBIENT) return set_error(GL_INVALID_ENUM);
+  const double v = param;
+  set_light_model_param(pname, &v);
+}
+
+void Context::glLightModelfv(GLenum pname, const GLfloat* params) {
+  const int n = pname_count(pname);
+  PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  if (n == 0) return set_error(GL_INVALID_ENUM);
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_light_model_param(pname, v);
+}
+
+void Context::set_material_param(GLenum face, GLenum pname, const double* v) {
+  if (face != GL_FRONT && face != GL_BACK && face != GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
+  if (pname == GL_SHININESS && (v[0] < 0.0 || v[0] > 128.0)) return set_error(GL_INVALID_VALUE);
+  for (int f = 0; f < 2; ++f) {
+    if ((f == 0 && face == GL_BACK) || (f == 1 && face == GL_FRONT)) continue;
+    Material& m = lighting_.material[f];
+    const Vec4 c(v[0], v[1], v[2], v[3]);
+    switch (pname) {
+      case GL_AMBIENT: m.ambient = c; break;
+      case GL_DIFFUSE: m.diffuse = c; break;
+      case GL_SPECULAR: m.specular = c; break;
+      case GL_EMISSION: m.emission = c; break;
+      case GL_AMBIENT_AND_DIFFUSE: m.ambient = m.diffuse = c; break;
+      case GL_SHININESS: m.shininess = v[0]; break;
+      case GL_COLOR_INDEXES: break;  // colour-index lighting: not modelled (RGBA only)
+      default: return set_error(GL_INVALID_ENUM);
+    }
+  }
+}
+
+void Context::glMaterialf(GLenum face, GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(face, pname, param)
+  if (pname != GL_SHININESS) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {param, 0, 0, 0};
+  set_material_param(face, pname, v);
+}
+
+void Context::glMaterialfv(GLenum face, GLenum pname, const GLfloat* params) {
+  const int n = pname_count(pname);
+  PASSIM_ENTRY(face, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  if (n == 0 || pname == GL_SPOT_DIRECTION) return set_error(GL_INVALID_ENUM);
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_material_param(face, pname, v);
+}
+
+void Context::glColorMaterial(GLenum face, GLenum mode) {
+  PASSIM_ENTRY(face, mode)
+  if (face != GL_FRONT && face != GL_BACK && face != GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
+  if (mode != GL_EMISSION && mode != GL_AMBIENT && mode != GL_DIFFUSE && mode != GL_SPECULAR &&
+      mode != GL_AMBIENT_AND_DIFFUSE)
+    return set_error(GL_INVALID_ENUM);
+  lighting_.color_material_face = face;
+  lighting_.color_material_mode = mode;
+  apply_color_material();
+}
+
+// ---------------------------------------------------------------- rasterization state (§3.3-3.5)
+
+void Context::glCullFace(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (mode != GL_FRONT && mode != GL_BACK && mode != GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
+  polygon_.cull_face = mode;
+}
+
+void Context::glFrontFace(GLenum mode) {
+  PASSIM_ENTRY(mode)
+  if (mode != GL_CW && mode != GL_CCW) return set_error(GL_INVALID_ENUM);
+  polygon_.front_face = mode;
+}
+
+void Context::glPolygonMode(GLenum face, GLenum mode) {
+  PASSIM_ENTRY(face, mode)
+  if (face != GL_FRONT && face != GL_BACK && face != GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
+  if (mode != GL_POINT && mode != GL_LINE && mode != GL_FILL) return set_error(GL_INVALID_ENUM);
+  if (face != GL_BACK) polygon_.mode_front = mode;
+  if (face != GL_FRONT) polygon_.mode_back = mode;
+}
+
+void Context::glPolygonOffset(GLfloat factor, GLfloat units) {
+  PASSIM_ENTRY(factor, units)
+  polygon_.offset_factor = factor;
+  polygon_.offset_units = units;
+}
+
+void Context::glPointSize(GLfloat size) {
+  PASSIM_ENTRY(size)
+  if (!(size > 0.0f)) return set_error(GL_INVALID_VALUE);
+  polygon_.point_size = size;
+}
+
+void Context::glLineWidth(GLfloat width) {
+  PASSIM_ENTRY(width)
+  if (!(width > 0.0f)) return set_error(GL_INVALID_VALUE);
+  polygon_.line_width = width;
+}
+
+}  // namespace passim

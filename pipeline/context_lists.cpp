@@ -1,0 +1,102 @@
+// Context: display lists (§5.4). A list holds calls as the call table describes
+// them; executing it invokes each through the table, as a replayed trace does.
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "pipeline/context.hpp"
+
+namespace passim {
+
+void Context::glNewList(GLuint list, GLenum mode) {
+  PASSIM_ENTRY(list, mode)
+  if (list == 0) return set_error(GL_INVALID_VALUE);
+  if (mode != GL_COMPILE && mode != GL_COMPILE_AND_EXECUTE) return set_error(GL_INVALID_ENUM);
+  if (compiling_list_ != 0) return set_error(GL_INVALID_OPERATION);
+  compiling_list_ = list;
+  compile_mode_ = mode;
+  compiling_calls_.clear();
+}
+
+void Context::glEndList() {
+  PASSIM_ENTRY()
+  if (compiling_list_ == 0) return set_error(GL_INVALID_OPERATION);
+  lists_[compiling_list_] = std::move(compiling_calls_);
+  compiling_calls_.clear();
+  compiling_list_ = 0;
+  compile_mode_ = 0;
+}
+
+void Context::execute_list(GLuint list) {
+  auto it = lists_.find(list);
+  if (it == lists_.end()) return;  // §5.4: an undefined list does nothing
+  // §5.4: beyond MAX_LIST_NESTING, CallList is ignored.
+  if (list_nesting_ >= profile_.limits.max_list_nesting) return;
+  ++list_nesting_;
+  // Copy-free: a list cannot be redefined while it runs (NewList is not compiled).
+  const std::vector<Call>& calls = it->second;
+  for (const Call& call : calls) call.info->invoke(*this, call.args);
+  --list_nesting_;
+}
+
+void Context::glCallList(GLuint list) {
+  PASSIM_ENTRY(list)
+  execute_list(list);
+}
+
+void Context::glCallLists(GLsizei n, GLenum type, const void* lists) {
+  PASSIM_ENTRY(n, type, RawArrayArg{lists, type, n > 0 ? static_cast<std::size_t>(n) : 0u})
+  if (n < 0) return set_error(GL_INVALID_VALUE);
+  const int size = type_size(type);
+  if (size == 0 || type == GL_DOUBLE) return set_error(GL_INVALID_ENUM);
+  const std::byte* p = static_cast<const std::byte*>(lists);
+  for (GLsizei k = 0; k < n && p; ++k) {
+    const std::byte* e = p + static_cast<std::size_t>(k) * static_cast<std::size_t>(size);
+    std::int64_t offset = 0;
+    switch (type) {
+      case GL_BYTE: { std::int8_t x; std::memcpy(&x, e, 1); offset = x; break; }
+      case GL_UNSIGNED_BYTE: { std::uint8_t x; std::memcpy(&x, e, 1); offset = x; break; }
+      case GL_SHORT: { std::int16_t x; std::memcpy(&x, e, 2); offset = x; break; }
+      case GL_UNSIGNED_SHORT: { std::uint16_t x; std::memcpy(&x, e, 2); offset = x; break; }
+      case GL_INT: { std::int32_t x; std::memcpy(&x, e, 4); offset = x; break; }
+      case GL_UNSIGNED_INT: { std::uint32_t x; std::memcpy(&x, e, 4); offset = x; break; }
+      case GL_FLOAT: { float x; std::memcpy(&x, e, 4); offset = static_cast<std::int64_t>(x); break; }
+      default: break;
+    }
+    execute_list(static_cast<GLuint>(static_cast<std::int64_t>(list_base_) + offset));
+  }
+}
+
+GLuint Context::glGenLists(GLsizei range) {
+  PASSIM_ENTRY_RET(0, range)
+  if (range < 0) {
+    set_error(GL_INVALID_VALUE);
+    return 0;
+  }
+  if (range == 0) return 0;
+  // The first run of `range` unused names; names handed out count as used (empty lists).
+  GLuint first = 1;
+  for (auto it = lists_.lower_bound(first); it != lists_.end() && it->first < first + static_cast<GLuint>(range);
+       it = lists_.lower_bound(first))
+    first = it->first + 1;
+  for (GLuint k = 0; k < static_cast<GLuint>(range); ++k) lists_[first + k];
+  return first;
+}
+
+void Context::glDeleteLists(GLuint list, GLsizei range) {
+  PASSIM_ENTRY(list, range)
+  if (range < 0) return set_error(GL_INVALID_VALUE);
+  for (GLsizei k = 0; k < range; ++k) lists_.erase(list + static_cast<GLuint>(k));
+}
+
+GLboolean Context::glIsList(GLuint list) {
+  PASSIM_ENTRY_RET(GL_FALSE, list)
+  return lists_.count(list) ? GL_TRUE : GL_FALSE;
+}
+
+void Context::glListBase(GLuint base) {
+  PASSIM_ENTRY(base)
+  list_base_ = base;
+}
+
+}  // namespace passim

@@ -1,0 +1,48 @@
+// Fixed-point conversions of OpenGL 1.2.1 §2.13.9 with the tie rule of
+// docs/arithmetic.md (A1: round to nearest, ties up: floor(x + 0.5)).
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+namespace passim {
+
+// 2^bits - 1 for bits in [0, 32].
+constexpr std::uint32_t max_code(int bits) {
+  return bits >= 32 ? 0xFFFFFFFFu : static_cast<std::uint32_t>((std::uint64_t{1} << bits) - 1);
+}
+
+// Clamp to [lo, hi]; NaN becomes lo so that no NaN ever reaches an integer conversion.
+constexpr double clamp_nan_low(double v, double lo, double hi) {
+  if (!(v > lo)) return lo;  // also catches NaN
+  if (v > hi) return hi;
+  return v;
+}
+
+// A1: round to nearest, ties towards +infinity.
+inline double round_half_up(double x) { return std::floor(x + 0.5); }
+
+// §2.13.9: k = round(clamp(c, 0, 1) * (2^bits - 1)).
+inline std::uint32_t float_to_fixed(double c, int bits) {
+  const double m = static_cast<double>(max_code(bits));
+  return static_cast<std::uint32_t>(round_half_up(clamp_nan_low(c, 0.0, 1.0) * m));
+}
+
+// §2.13.9: c = k / (2^bits - 1); 0 and 1 are exact. A 0-bit channel reads as 1 (absent alpha).
+inline double fixed_to_float(std::uint32_t k, int bits) {
+  if (bits == 0) return 1.0;
+  return static_cast<double>(k) / static_cast<double>(max_code(bits));
+}
+
+// Quantise a real colour to the nearest representable value at `bits`.
+inline double quantise(double c, int bits) {
+  if (bits == 0) return 1.0;
+  return fixed_to_float(float_to_fixed(c, bits), bits);
+}
+
+// Re-express a code at `from` bits at `to` bits (A2: round(u * (2^to-1)/(2^from-1))).
+inline std::uint32_t rescale_code(std::uint32_t k, int from, int to) {
+  if (from == to) return k;
+  return float_to_fixed(fixed_to_float(k, from), to);
+}
+
+}  // namespace passim

@@ -1,0 +1,46 @@
+// Machine profiles: plane widths, limits and (for the cost model) rates of a
+// modelled workstation. Every figure says where it comes from in docs/cost-model.md.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+namespace passim {
+
+struct MachineLimits {
+  int max_framebuffer_size = 4096;  // largest window width or height
+  int max_viewport_size = 4096;
+  int max_texture_size = 2048;
+  int max_lights = 8;
+  int max_clip_planes = 6;
+  int max_modelview_stack = 32;
+  int max_projection_stack = 2;
+  int max_texture_stack = 2;
+  int max_color_matrix_stack = 2;
+  int max_list_nesting = 64;
+  int max_convolution_width = 7;
+  int max_convolution_height = 7;
+  int max_color_table_width = 256;
+  int max_histogram_width = 256;
+  int max_pixel_map_table = 256;
+  int max_eval_order = 8;
+  int max_attrib_stack = 16;
+  int subpixel_bits = 4;  // window-coordinate snapping of vertices (A5)
+};
+
+struct MachineProfile {
+  std::string name;
+  std::string description;
+  std::array<int, 4> color_bits{8, 8, 8, 8};
+  int depth_bits = 24;
+  int stencil_bits = 8;
+  int accum_bits = 16;  // per component, signed
+  MachineLimits limits;
+  std::string sources;  // where the figures come from
+};
+
+const std::vector<MachineProfile>& machine_profiles();
+// nullptr when no profile has that name.
+const MachineProfile* find_profile(const std::string& name);
+
+}  // namespace passim

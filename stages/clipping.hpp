@@ -1,0 +1,25 @@
+// Primitive clipping, OpenGL 1.2.1 §2.11: the view volume -w <= x, y, z <= w and
+// the enabled client-defined planes (p · eye >= 0), for convex polygons and points.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "stages/vertex.hpp"
+
+namespace passim {
+
+struct ClipPlanes {
+  std::array<Vec4, 6> user{};  // eye coordinates
+  unsigned user_enabled = 0;   // bit i: plane i enabled
+};
+
+// True when the point lies inside every plane (§2.11: points are clipped as a whole).
+bool point_inside(const ProcessedVertex& v, const ClipPlanes& planes);
+
+// Clips the convex polygon `poly` in place (Sutherland-Hodgman, attributes interpolated
+// with the same parameter t as the clip coordinates). `scratch` is reused storage.
+// Returns false when nothing is left; `cut` tells whether any plane cut the polygon.
+bool clip_polygon(std::vector<ProcessedVertex>& poly, std::vector<ProcessedVertex>& scratch,
+                  const ClipPlanes& planes, bool& cut);
+
+}  // namespace passim

@@ -1,0 +1,225 @@
+#include "stages/fragment_ops.hpp"
+
+#include <algorithm>
+
+#include "pipeline/fixed_point.hpp"
+
+namespace passim {
+
+bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored) {
+  switch (func) {
+    case GL_NEVER: return false;
+    case GL_LESS: return incoming < stored;
+    case GL_EQUAL: return incoming == stored;
+    case GL_LEQUAL: return incoming <= stored;
+    case GL_GREATER: return incoming > stored;
+    case GL_NOTEQUAL: return incoming != stored;
+    case GL_GEQUAL: return incoming >= stored;
+    default: return true;  // GL_ALWAYS
+  }
+}
+
+double blend_component(GLenum equation, double s, double d, double sf, double df) {
+  switch (equation) {
+    case GL_FUNC_SUBTRACT: return s * sf - d * df;
+    case GL_FUNC_REVERSE_SUBTRACT: return d * df - s * sf;
+    case GL_MIN: return std::min(s, d);  // factors ignored (ARB_imaging)
+    case GL_MAX: return std::max(s, d);
+    default: return s * sf + d * df;  // GL_FUNC_ADD
+  }
+}
+
+std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask) {
+  std::uint32_t r;
+  switch (op) {
+    case GL_CLEAR: r = 0; break;
+    case GL_AND: r = s & d; break;
+    case GL_AND_REVERSE: r = s & ~d; break;
+    case GL_COPY: r = s; break;
+    case GL_AND_INVERTED: r = ~s & d; break;
+    case GL_NOOP: r = d; break;
+    case GL_XOR: r = s ^ d; break;
+    case GL_OR: r = s | d; break;
+    case GL_NOR: r = ~(s | d); break;
+    case GL_EQUIV: r = ~(s ^ d); break;
+    case GL_INVERT: r = ~d; break;
+    case GL_OR_REVERSE: r = s | ~d; break;
+    case GL_COPY_INVERTED: r = ~s; break;
+    case GL_OR_INVERTED: r = ~s | d; break;
+    case GL_NAND: r = ~(s & d); break;
+    case GL_SET: r = ~0u; break;
+    default: r = s; break;
+  }
+  return r & mask;
+}
+
+namespace {
+
+// §4.1.6 Table 4.1-4.2: the factor for one component c (0-3) of a fragment.
+double blend_factor(GLenum f, int c, const double src[4], const double dst[4], const Vec4& constant) {
+  switch (f) {
+    case GL_ZERO: return 0.0;
+    case GL_ONE: return 1.0;
+    case GL_SRC_COLOR: return src[c];
+    case GL_ONE_MINUS_SRC_COLOR: return 1.0 - src[c];
+    case GL_DST_COLOR: return dst[c];
+    case GL_ONE_MINUS_DST_COLOR: return 1.0 - dst[c];
+    case GL_SRC_ALPHA: return src[3];
+    case GL_ONE_MINUS_SRC_ALPHA: return 1.0 - src[3];
+    case GL_DST_ALPHA: return dst[3];
+    case GL_ONE_MINUS_DST_ALPHA: return 1.0 - dst[3];
+    case GL_CONSTANT_COLOR: return constant[c];
+    case GL_ONE_MINUS_CONSTANT_COLOR: return 1.0 - constant[c];
+    case GL_CONSTANT_ALPHA: return constant[3];
+    case GL_ONE_MINUS_CONSTANT_ALPHA: return 1.0 - constant[3];
+    case GL_SRC_ALPHA_SATURATE: return c == 3 ? 1.0 : std::min(src[3], 1.0 - dst[3]);
+    default: return 0.0;
+  }
+}
+
+std::uint32_t stencil_apply(GLenum op, std::uint32_t value, std::uint32_t ref, std::uint32_t max) {
+  switch (op) {
+    case GL_ZERO: return 0;
+    case GL_REPLACE: return ref;
+    case GL_INCR: return value < max ? value + 1 : max;  // saturating in GL 1.2
+    case GL_DECR: return value > 0 ? value - 1 : 0;
+    case GL_INVERT: return ~value & max;
+    default: return value;  // GL_KEEP
+  }
+}
+
+}  // namespace
+
+void FragmentOps::process(FragmentSpan& span) {
+  const FragmentOpsState& ops = *in_.ops;
+  const FramebufferControlState& ctl = *in_.control;
+  const FramebufferConfig& cfg = fb_.config;
+  Counters& counters = *counters_;
+  const std::array<int, 4>& fragment_bits = *in_.fragment_bits;
+  std::uint8_t* live = span.live;
+  int begin = 0, end = span.count;
+
+  // Scissor (§4.1.2): left <= x < left + width, bottom <= y < bottom + height.
+  if (ops.scissor_enabled) {
+    const bool row_in = span.y >= ops.scissor_y && span.y < ops.scissor_y + ops.scissor_height;
+    const int a = row_in ? std::clamp(ops.scissor_x - span.x0, 0, span.count) : 0;
+    const int b = row_in ? std::clamp(ops.scissor_x + ops.scissor_width - span.x0, a, span.count) : 0;
+    counters.killed_scissor += static_cast<std::uint64_t>(span.count - (b - a));
+    begin = a;
+    end = b;
+  }
+  if (begin >= end) return;
+  std::fill(live + begin, live + end, std::uint8_t{1});
+  std::uint64_t alive = static_cast<std::uint64_t>(end - begin);
+
+  // Alpha test (§4.1.3): reference and fragment alpha compared as codes at the alpha width.
+  if (ops.alpha_test) {
+    const int abits = fragment_bits[3];
+    const std::uint32_t ref = float_to_fixed(ops.alpha_ref, abits);
+    for (int i = begin; i < end; ++i) {
+      if (!compare(ops.alpha_func, span.rgba[4 * i + 3], ref)) {
+        live[i] = 0;
+        ++counters.killed_alpha;
+        --alive;
+      }
+    }
+  }
+
+  // Stencil (§4.1.4) and depth (§4.1.5) tests; the stencil update depends on both.
+  const std::size_t row_base = fb_.pixel_index(span.x0, span.y);
+  const bool has_stencil = cfg.stencil_bits > 0;
+  const bool stencil_on = ops.stencil_test && has_stencil;
+  const bool depth_on = ops.depth_test && cfg.depth_bits > 0;
+  const std::uint32_t smax = max_code(cfg.stencil_bits);
+  const std::uint32_t sref = static_cast<std::uint32_t>(std::clamp<std::int64_t>(ops.stencil_ref, 0, smax));
+  const std::uint32_t smask = ops.stencil_value_mask & smax;
+  const std::uint32_t swrite = ctl.stencil_writemask & smax;
+  for (int i = begin; i < end && (stencil_on || depth_on); ++i) {
+    if (!live[i]) continue;
+    const std::size_t p = row_base + static_cast<std::size_t>(i);
+    std::uint32_t stencil = 0;
+    if (stencil_on) {
+      stencil = fb_.stencil[p];
+      counters.stencil_bits_read += static_cast<std::uint64_t>(cfg.stencil_bits);
+      if (!compare(ops.stencil_func, sref & smask, stencil & smask)) {
+        live[i] = 0;
+        ++counters.killed_stencil;
+        --alive;
+        const std::uint32_t s = stencil_apply(ops.stencil_fail, stencil, sref, smax);
+        if (s != stencil && swrite) {
+          fb_.stencil[p] = static_cast<std::uint8_t>((stencil & ~swrite) | (s & swrite));
+          counters.stencil_bits_written += static_cast<std::uint64_t>(cfg.stencil_bits);
+        }
+        continue;
+      }
+    }
+    bool depth_pass = true;
+    if (depth_on) {
+      counters.depth_bits_read += static_cast<std::uint64_t>(cfg.depth_bits);
+      depth_pass = compare(ops.depth_func, span.depth[i], fb_.depth[p]);
+      if (depth_pass && ctl.depth_mask) {
+        fb_.depth[p] = span.depth[i];
+        counters.depth_bits_written += static_cast<std::uint64_t>(cfg.depth_bits);
+      }
+    }
+    if (stencil_on) {
+      const std::uint32_t s =
+          stencil_apply(depth_pass ? ops.stencil_depth_pass : ops.stencil_depth_fail, stencil, sref, smax);
+      if (s != stencil && swrite) {
+        fb_.stencil[p] = static_cast<std::uint8_t>((stencil & ~swrite) | (s & swrite));
+        counters.stencil_bits_written += static_cast<std::uint64_t>(cfg.stencil_bits);
+      }
+    }
+    if (!depth_pass) {
+      live[i] = 0;
+      ++counters.killed_depth;
+      --alive;
+    }
+  }
+  counters.fragments_written += alive;
+  if (alive == 0) return;
+
+  // Blending (§4.1.6), logic op (§4.1.7; it replaces blending), masked write (§4.2.2),
+  // once per draw buffer.
+  const bool logic_on = ops.logic_op_enabled;
+  const bool blend_on = ops.blend && !logic_on;
+  int mask_bits = 0;
+  for (int k = 0; k < 4; ++k)
+    if (ctl.color_mask[k]) mask_bits += cfg.color_bits[k];
+  int total_bits = cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3];
+  for (ColorBufferId id : *in_.draw_buffers) {
+    std::uint16_t* dst = fb_.color[static_cast<int>(id)].rgba.data() + 4 * row_base;
+    for (int i = begin; i < end; ++i) {
+      if (!live[i]) continue;
+      std::uint16_t* d = dst + 4 * i;
+      const std::uint16_t* s = span.rgba + 4 * i;
+      std::uint32_t out[4];
+      if (blend_on) {
+        double src[4], dcol[4];
+        for (int k = 0; k < 4; ++k) {
+          src[k] = fixed_to_float(s[k], fragment_bits[k]);
+          dcol[k] = fixed_to_float(d[k], cfg.color_bits[k]);  // no alpha bits: Ad = 1
+        }
+        for (int k = 0; k < 4; ++k) {
+          const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
+          const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
+          out[k] = float_to_fixed(blend_component(ops.blend_equation, src[k], dcol[k], sf, df), cfg.color_bits[k]);
+        }
+        ++counters.blend_operations;
+        counters.color_bits_read += static_cast<std::uint64_t>(total_bits);
+      } else {
+        for (int k = 0; k < 4; ++k) out[k] = rescale_code(s[k], fragment_bits[k], cfg.color_bits[k]);
+        if (logic_on) {
+          for (int k = 0; k < 4; ++k) out[k] = logic_op(ops.logic_op, out[k], d[k], max_code(cfg.color_bits[k]));
+          ++counters.logic_operations;
+          counters.color_bits_read += static_cast<std::uint64_t>(total_bits);
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        if (ctl.color_mask[k] && cfg.color_bits[k] > 0) d[k] = static_cast<std::uint16_t>(out[k]);
+      counters.color_bits_written += static_cast<std::uint64_t>(mask_bits);
+    }
+  }
+}
+
+}  // namespace passim

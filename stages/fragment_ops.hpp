@@ -1,0 +1,42 @@
+// Per-fragment operations, OpenGL 1.2.1 §4.1, in the spec's order: pixel ownership
+// (done by the rasterizer), scissor, alpha test, stencil test, depth test,
+// blending (with ARB_imaging's constant colour and equations), dithering (a
+// no-op, A3), logic op, then the masked write of §4.2.2 to each draw buffer.
+#pragma once
+#include <vector>
+
+#include "pipeline/counters.hpp"
+#include "pipeline/framebuffer.hpp"
+#include "pipeline/state.hpp"
+#include "stages/fragment_span.hpp"
+
+namespace passim {
+
+// Where the operations read their state: the Context's own state groups.
+struct FragmentOpsInput {
+  const FragmentOpsState* ops = nullptr;
+  const FramebufferControlState* control = nullptr;
+  const std::vector<ColorBufferId>* draw_buffers = nullptr;
+  const std::array<int, 4>* fragment_bits = nullptr;  // widths of the span's colour codes
+};
+
+class FragmentOps final : public FragmentSink {
+ public:
+  FragmentOps(Framebuffer& fb, Counters*& counters) : fb_(fb), counters_(counters) {}
+  void configure(const FragmentOpsInput& input) { in_ = input; }
+  void process(FragmentSpan& span) override;
+
+ private:
+  Framebuffer& fb_;
+  Counters*& counters_;
+  FragmentOpsInput in_;
+};
+
+// The comparison functions of AlphaFunc, StencilFunc and DepthFunc (NEVER ... ALWAYS).
+bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored);
+// §4.1.6 blend of one component: source, destination, factors and constant in [0, 1].
+double blend_component(GLenum equation, double src, double dst, double src_factor, double dst_factor);
+// §4.1.7 logic operation on n-bit codes.
+std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask);
+
+}  // namespace passim

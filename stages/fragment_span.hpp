@@ -1,0 +1,36 @@
+// A run of fragments on one row, as rasterization hands them to the
+// per-fragment operations (design note: spans with a live mask).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace passim {
+
+struct FragmentSpan {
+  int y = 0;
+  int x0 = 0;
+  int count = 0;
+  std::uint16_t* rgba = nullptr;  // 4 codes per fragment at the fragment colour widths
+  std::uint32_t* depth = nullptr;  // window z codes at the depth-plane width
+  std::uint8_t* live = nullptr;    // scratch for the fragment operations
+};
+
+// Storage for one span of up to `max_width` fragments.
+struct SpanBuffers {
+  explicit SpanBuffers(int max_width)
+      : rgba(4 * static_cast<std::size_t>(max_width)), depth(max_width), live(max_width) {}
+  std::vector<std::uint16_t> rgba;
+  std::vector<std::uint32_t> depth;
+  std::vector<std::uint8_t> live;
+  FragmentSpan span(int y, int x0, int count) {
+    return FragmentSpan{y, x0, count, rgba.data(), depth.data(), live.data()};
+  }
+};
+
+class FragmentSink {
+ public:
+  virtual ~FragmentSink() = default;
+  virtual void process(FragmentSpan& span) = 0;
+};
+
+}  // namespace passim

@@ -1,0 +1,210 @@
+#include "stages/rasterizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/fixed_point.hpp"
+
+namespace passim {
+namespace {
+
+// Floor and ceiling of n / d for d > 0.
+std::int64_t floor_div(std::int64_t n, std::int64_t d) {
+  std::int64_t q = n / d;
+  if ((n % d) != 0 && n < 0) --q;
+  return q;
+}
+std::int64_t ceil_div(std::int64_t n, std::int64_t d) { return -floor_div(-n, d); }
+
+// A plane f(x, y) = f0 + dfdx·(x - x0) + dfdy·(y - y0) through three attribute values at
+// the snapped vertex positions (the eq. 3.4 interpolation written as a plane).
+struct Plane {
+  double f0 = 0.0, dfdx = 0.0, dfdy = 0.0;
+  double at_row(double cy, double y0) const { return f0 + dfdy * (cy - y0); }
+};
+
+struct PlaneSetup {
+  double x0, y0, ex1, ey1, ex2, ey2, det;  // edges from vertex 0 and the determinant
+  Plane plane(double f0, double f1, double f2) const {
+    Plane p;
+    p.f0 = f0;
+    p.dfdx = ((f1 - f0) * ey2 - (f2 - f0) * ey1) / det;
+    p.dfdy = ((f2 - f0) * ex1 - (f1 - f0) * ex2) / det;
+    return p;
+  }
+};
+
+std::uint32_t depth_code(double z, int depth_bits) {
+  if (depth_bits == 0) return 0;
+  return float_to_fixed(z, depth_bits);  // clamps to [0, 1] (A7: clamp after offset), rounds (A8)
+}
+
+void constant_color_codes(const Vec4& c, const RasterTarget& t, std::uint16_t out[4]) {
+  for (int k = 0; k < 4; ++k) out[k] = static_cast<std::uint16_t>(float_to_fixed(c[k], t.color_bits[k]));
+}
+
+}  // namespace
+
+std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits) {
+  const double scale = std::ldexp(1.0, subpixel_bits);
+  return 2 * static_cast<std::int64_t>(round_half_up(window_coordinate * scale));
+}
+
+void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
+                        const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
+                        FragmentSink& sink, Counters& counters) {
+  const std::int64_t S = std::int64_t{1} << target.subpixel_bits;  // half a pixel in doubled units
+  const std::int64_t pixel = 2 * S;
+  const RasterVertex* v[3] = {&a, &b, &c};
+  std::int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i) {
+    X[i] = snap_coordinate(v[i]->x, target.subpixel_bits);
+    Y[i] = snap_coordinate(v[i]->y, target.subpixel_bits);
+  }
+  std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+  ++counters.triangles_rasterized;
+  if (area == 0) return;  // degenerate after snapping: no pixel centre is strictly inside
+  if (area < 0) {         // make the vertex order counter-clockwise (y up)
+    std::swap(v[1], v[2]);
+    std::swap(X[1], X[2]);
+    std::swap(Y[1], Y[2]);
+    area = -area;
+  }
+
+  // Rows and columns whose centres (2x+1)·S can lie inside the bounding box.
+  const std::int64_t min_x = std::min({X[0], X[1], X[2]}), max_x = std::max({X[0], X[1], X[2]});
+  const std::int64_t min_y = std::min({Y[0], Y[1], Y[2]}), max_y = std::max({Y[0], Y[1], Y[2]});
+  const std::int64_t col_lo = std::max<std::int64_t>(0, ceil_div(min_x - S, pixel));
+  const std::int64_t col_hi = std::min<std::int64_t>(target.width - 1, floor_div(max_x - S, pixel));
+  const std::int64_t row_lo = std::max<std::int64_t>(0, ceil_div(min_y - S, pixel));
+  const std::int64_t row_hi = std::min<std::int64_t>(target.height - 1, floor_div(max_y - S, pixel));
+  if (col_lo > col_hi || row_lo > row_hi) return;
+
+  // Edge k runs from vertex k+1 to vertex k+2; E_k(P) = dx·(Py - ay) - dy·(Px - ax) > 0 inside.
+  // A5: a centre exactly on an edge is inside when the edge is a left edge (dy < 0) or a
+  // bottom edge (dy == 0, dx > 0), so an edge shared by two triangles is drawn once.
+  struct Edge {
+    std::int64_t ax, ay, dx, dy, threshold;
+  } edges[3];
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    Edge& e = edges[k];
+    e.ax = X[i];
+    e.ay = Y[i];
+    e.dx = X[j] - X[i];
+    e.dy = Y[j] - Y[i];
+    e.threshold = (e.dy < 0 || (e.dy == 0 && e.dx > 0)) ? 0 : 1;
+  }
+
+  // Planes in window coordinates of the snapped vertices (exact: divisions by powers of two).
+  const double unit = static_cast<double>(pixel);
+  PlaneSetup setup;
+  setup.x0 = static_cast<double>(X[0]) / unit;
+  setup.y0 = static_cast<double>(Y[0]) / unit;
+  setup.ex1 = static_cast<double>(X[1] - X[0]) / unit;
+  setup.ey1 = static_cast<double>(Y[1] - Y[0]) / unit;
+  setup.ex2 = static_cast<double>(X[2] - X[0]) / unit;
+  setup.ey2 = static_cast<double>(Y[2] - Y[0]) / unit;
+  setup.det = static_cast<double>(area) / (unit * unit);
+
+  const Plane z_plane = setup.plane(v[0]->z, v[1]->z, v[2]->z);
+  double offset = 0.0;
+  if (options.offset) {
+    // §3.5.5, eq. 3.6 (max form), r = one step of the depth plane (A7).
+    const double m = std::max(std::fabs(z_plane.dfdx), std::fabs(z_plane.dfdy));
+    const double r = target.depth_bits > 0 ? 1.0 / static_cast<double>(max_code(target.depth_bits)) : 0.0;
+    offset = m * options.offset_factor + r * options.offset_units;
+  }
+
+  // Colour: constant (flat shading, or three equal quantised colours) or perspective-correct
+  // (eq. 3.4: planes of c/w and 1/w, divided per fragment).
+  std::uint16_t constant_codes[4];
+  bool constant = options.flat || (v[0]->color == v[1]->color && v[1]->color == v[2]->color);
+  if (constant) constant_color_codes(options.flat ? options.flat_color : v[0]->color, target, constant_codes);
+  Plane q_plane, c_plane[4];
+  if (!constant) {
+    const double q0 = 1.0 / v[0]->w, q1 = 1.0 / v[1]->w, q2 = 1.0 / v[2]->w;
+    q_plane = setup.plane(q0, q1, q2);
+    for (int k = 0; k < 4; ++k)
+      c_plane[k] = setup.plane(v[0]->color[k] * q0, v[1]->color[k] * q1, v[2]->color[k] * q2);
+  }
+
+  for (std::int64_t row = row_lo; row <= row_hi; ++row) {
+    const std::int64_t py = (2 * row + 1) * S;
+    std::int64_t lo = col_lo, hi = col_hi;
+    for (const Edge& e : edges) {
+      // E(x) = e0 + x·step at the centre of column x.
+      const std::int64_t e0 = e.dx * (py - e.ay) - e.dy * (S - e.ax);
+      const std::int64_t step = -e.dy * pixel;
+      if (step > 0) {
+        lo = std::max(lo, ceil_div(e.threshold - e0, step));
+      } else if (step < 0) {
+        hi = std::min(hi, floor_div(e0 - e.threshold, -step));
+      } else if (e0 < e.threshold) {
+        lo = hi + 1;
+      }
+      if (lo > hi) break;
+    }
+    if (lo > hi) continue;
+    const int x0 = static_cast<int>(lo), n = static_cast<int>(hi - lo + 1);
+    FragmentSpan span = buffers.span(static_cast<int>(row), x0, n);
+    counters.fragments_generated += static_cast<std::uint64_t>(n);
+
+    const double cy = static_cast<double>(row) + 0.5;
+    const double z_row = z_plane.at_row(cy, setup.y0);
+    for (int i = 0; i < n; ++i) {
+      const double cx = static_cast<double>(x0 + i) + 0.5;
+      span.depth[i] = depth_code((z_row + z_plane.dfdx * (cx - setup.x0)) + offset, target.depth_bits);
+    }
+    if (constant) {
+      for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = constant_codes[k];
+    } else {
+      const double q_row = q_plane.at_row(cy, setup.y0);
+      double c_row[4];
+      for (int k = 0; k < 4; ++k) c_row[k] = c_plane[k].at_row(cy, setup.y0);
+      for (int i = 0; i < n; ++i) {
+        const double dx = static_cast<double>(x0 + i) + 0.5 - setup.x0;
+        const double q = q_row + q_plane.dfdx * dx;
+        for (int k = 0; k < 4; ++k) {
+          const double value = (c_row[k] + c_plane[k].dfdx * dx) / q;
+          span.rgba[4 * i + k] = static_cast<std::uint16_t>(float_to_fixed(value, target.color_bits[k]));
+        }
+      }
+    }
+    sink.process(span);
+  }
+}
+
+void rasterize_point(const RasterVertex& v, double size, const RasterTarget& target, SpanBuffers& buffers,
+                     FragmentSink& sink, Counters& counters) {
+  // §3.3.1: width w = max(1, round(size)); odd w is centred on the pixel holding the point,
+  // even w on the nearest pixel corner.
+  const int w = std::max(1, static_cast<int>(round_half_up(size)));
+  std::int64_t x_lo, y_lo;
+  if (w % 2 == 1) {
+    x_lo = static_cast<std::int64_t>(std::floor(v.x)) - (w - 1) / 2;
+    y_lo = static_cast<std::int64_t>(std::floor(v.y)) - (w - 1) / 2;
+  } else {
+    x_lo = static_cast<std::int64_t>(std::floor(v.x + 0.5)) - w / 2;
+    y_lo = static_cast<std::int64_t>(std::floor(v.y + 0.5)) - w / 2;
+  }
+  const std::int64_t x_a = std::max<std::int64_t>(0, x_lo), x_b = std::min<std::int64_t>(target.width - 1, x_lo + w - 1);
+  const std::int64_t y_a = std::max<std::int64_t>(0, y_lo), y_b = std::min<std::int64_t>(target.height - 1, y_lo + w - 1);
+  if (x_a > x_b || y_a > y_b) return;
+  std::uint16_t codes[4];
+  constant_color_codes(v.color, target, codes);
+  const std::uint32_t z = depth_code(v.z, target.depth_bits);
+  for (std::int64_t row = y_a; row <= y_b; ++row) {
+    const int n = static_cast<int>(x_b - x_a + 1);
+    FragmentSpan span = buffers.span(static_cast<int>(row), static_cast<int>(x_a), n);
+    counters.fragments_generated += static_cast<std::uint64_t>(n);
+    for (int i = 0; i < n; ++i) {
+      span.depth[i] = z;
+      for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = codes[k];
+    }
+    sink.process(span);
+  }
+}
+
+}  // namespace passim

@@ -1,0 +1,47 @@
+// Polygon and point rasterization, OpenGL 1.2.1 §3.3 and §3.5, with the choices
+// of docs/arithmetic.md: vertices snapped to 1/2^subpixel_bits of a pixel, a
+// fragment for each pixel centre inside the triangle, centres on left or bottom
+// edges inside (A5), depth screen-linear (eq. 3.4 with w = 1), colours
+// perspective-correct (A6), polygon offset in the max form (A7).
+#pragma once
+#include <array>
+
+#include "pipeline/counters.hpp"
+#include "pipeline/state.hpp"
+#include "stages/fragment_span.hpp"
+
+namespace passim {
+
+struct RasterVertex {
+  double x = 0.0, y = 0.0, z = 0.0;  // window coordinates, z in [0, 1]
+  double w = 1.0;                    // clip w, for perspective correction
+  Vec4 color{};                      // clamped, quantised colour
+};
+
+struct RasterTarget {
+  int width = 0, height = 0;  // the window: fragments outside are not produced (pixel ownership)
+  int subpixel_bits = 4;
+  int depth_bits = 24;
+  std::array<int, 4> color_bits{8, 8, 8, 8};  // fragment colour widths
+};
+
+struct TriangleOptions {
+  bool flat = false;  // one colour for the whole triangle: flat_color
+  Vec4 flat_color{};
+  bool offset = false;
+  double offset_factor = 0.0, offset_units = 0.0;
+};
+
+// The fixed-point coordinate of a window coordinate: round(x · 2^subpixel_bits), doubled so
+// that pixel centres (x + 1/2) are integers too.
+std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits);
+
+void rasterize_triangle(const RasterVertex& v0, const RasterVertex& v1, const RasterVertex& v2,
+                        const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
+                        FragmentSink& sink, Counters& counters);
+
+// Non-antialiased point of the given size (§3.3.1).
+void rasterize_point(const RasterVertex& v, double size, const RasterTarget& target, SpanBuffers& buffers,
+                     FragmentSink& sink, Counters& counters);
+
+}  // namespace passim

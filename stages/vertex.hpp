@@ -1,0 +1,17 @@
+// A vertex after per-vertex operations (§2.10-2.13): what clipping and
+// rasterization consume.
+#pragma once
+#include <array>
+
+#include "pipeline/state.hpp"
+
+namespace passim {
+
+struct ProcessedVertex {
+  Vec4 clip{0.0, 0.0, 0.0, 1.0};  // clip coordinates
+  Vec4 eye{0.0, 0.0, 0.0, 1.0};   // eye coordinates (user clip planes)
+  std::array<Vec4, 2> color{};    // [front, back], clamped and quantised (A4)
+  Vec4 tex{0.0, 0.0, 0.0, 1.0};   // after texgen and the texture matrix
+};
+
+}  // namespace passim
