@@ -1,1 +1,193 @@
-int main() { return 0; }
+// passim: the command line (docs/cli.md).
+//   passim run FILE.pass --out DIR     replay a trace: images + counters.json
+//   passim demo [--out DIR]            the main job on built-in defaults
+//   passim info                        machine profiles, widths, limits, calls
+// Exit status: 0 ok, 1 trace or run error, 2 usage, 3 output differs from --expect.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "pipeline/calls.hpp"
+#include "pipeline/image_io.hpp"
+#include "pipeline/profile.hpp"
+#include "pipeline/report.hpp"
+#include "pipeline/trace.hpp"
+
+namespace fs = std::filesystem;
+using namespace passim;
+
+namespace {
+
+constexpr int kOk = 0, kRunError = 1, kUsage = 2, kMismatch = 3;
+
+void print_counters_summary(const nlohmann::json& report) {
+  std::cout << fmt::format("  {:<28} {:>12} {:>12} {:>12}\n", "pass", "fragments", "written", "killed");
+  for (const auto& p : report["passes"]) {
+    const auto& c = p["counters"];
+    const auto killed = c["killed_scissor"].get<std::uint64_t>() + c["killed_alpha"].get<std::uint64_t>() +
+                        c["killed_stencil"].get<std::uint64_t>() + c["killed_depth"].get<std::uint64_t>();
+    std::string label = std::string(2 * p["depth"].get<std::size_t>(), ' ') + p["label"].get<std::string>();
+    std::cout << fmt::format("  {:<28} {:>12} {:>12} {:>12}\n", label, c["fragments_generated"].get<std::uint64_t>(),
+                             c["fragments_written"].get<std::uint64_t>(), killed);
+  }
+}
+
+int run_command(const fs::path& trace, const fs::path& out, bool strict, const std::string& expect,
+                const std::string& record, bool tiff, bool write_expected, bool quiet) {
+  std::ostringstream recorded;
+  TraceWriter writer(recorded);
+  ReplayOptions options;
+  options.strict = strict;
+  options.diagnostics = &std::cerr;
+  if (!record.empty()) options.record = &writer;
+  RunOutput result;
+  try {
+    result = run_trace_to_dir(trace, out, options, tiff);
+    if (!record.empty()) write_text_file(record, recorded.str());
+  } catch (const TraceError& e) {
+    std::cerr << "passim: " << e.what() << "\n";
+    return kRunError;
+  } catch (const std::exception& e) {
+    std::cerr << "passim: " << trace.string() << ": " << e.what() << "\n";
+    return kRunError;
+  }
+  if (!quiet) {
+    std::cout << fmt::format("{} -> {}\n", trace.string(), out.string());
+    for (const auto& f : result.files) std::cout << "  wrote " << f.string() << "\n";
+    print_counters_summary(result.report);
+    for (const auto& w : result.report["warnings"]) std::cerr << "passim: warning: " << w.get<std::string>() << "\n";
+  }
+  if (write_expected) {
+    const fs::path path = out / "expected.json";
+    write_text_file(path, expectation_of(result.report).dump(2) + "\n");
+    if (!quiet) std::cout << "  wrote " << path.string() << "\n";
+  }
+  if (!expect.empty()) {
+    std::ifstream in(expect);
+    if (!in) {
+      std::cerr << "passim: cannot read expectation file " << expect << "\n";
+      return kRunError;
+    }
+    nlohmann::json expected;
+    try {
+      expected = nlohmann::json::parse(in);
+    } catch (const std::exception& e) {
+      std::cerr << "passim: " << expect << ": not valid JSON: " << e.what() << "\n";
+      return kRunError;
+    }
+    const auto diffs = check_expectation(result.report, expected);
+    if (!diffs.empty()) {
+      std::cerr << "passim: " << trace.string() << " differs from " << expect << ":\n";
+      for (const auto& d : diffs) std::cerr << "  " << d << "\n";
+      return kMismatch;
+    }
+    if (!quiet) std::cout << "  matches " << expect << "\n";
+  }
+  return kOk;
+}
+
+int info_command(bool calls) {
+  if (calls) {
+    for (const CallInfo* c : all_calls()) {
+      std::cout << c->name << "(" << c->signature << ")";
+      if (!c->compiled_into_lists) std::cout << "  [not compiled into lists]";
+      std::cout << "\n";
+    }
+    std::cout << "\nSignature letters: see docs/trace-format.md.\n";
+    return kOk;
+  }
+  std::cout << "Machine profiles (select with '@profile NAME' in a trace):\n\n";
+  for (const MachineProfile& p : machine_profiles()) {
+    const MachineLimits& l = p.limits;
+    std::cout << fmt::format("{}\n  {}\n", p.name, p.description);
+    std::cout << fmt::format("  widths: colour {},{},{},{}  depth {}  stencil {}  accumulation {}\n", p.color_bits[0],
+                             p.color_bits[1], p.color_bits[2], p.color_bits[3], p.depth_bits, p.stencil_bits,
+                             p.accum_bits);
+    std::cout << fmt::format(
+        "  limits: framebuffer {}  viewport {}  texture {}  lights {}  clip planes {}  subpixel bits {}\n"
+        "          convolution {}x{}  colour table {}  histogram {}  pixel map {}  list nesting {}\n",
+        l.max_framebuffer_size, l.max_viewport_size, l.max_texture_size, l.max_lights, l.max_clip_planes,
+        l.subpixel_bits, l.max_convolution_width, l.max_convolution_height, l.max_color_table_width,
+        l.max_histogram_width, l.max_pixel_map_table, l.max_list_nesting);
+    std::cout << fmt::format("  sources: {}\n\n", p.sources);
+  }
+  return kOk;
+}
+
+int demo_command(const fs::path& out) {
+  // The main job until the papers' programs land: replay the example traces that ship
+  // with passim and say where their images and counters went.
+  const fs::path traces = fs::path(PASSIM_SOURCE_DIR) / "traces";
+  std::vector<fs::path> files;
+  if (fs::is_directory(traces))
+    for (const auto& e : fs::directory_iterator(traces))
+      if (e.path().extension() == ".pass") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) {
+    std::cerr << "passim: no example traces found in " << traces.string() << "\n";
+    return kRunError;
+  }
+  int status = kOk;
+  for (const fs::path& f : files) {
+    fs::path expect = f;
+    expect.replace_extension(".expected.json");
+    int s = run_command(f, out / f.stem(), false, fs::exists(expect) ? expect.string() : "", "", false, false, false);
+    if (s != kOk) status = s;
+  }
+  std::cout << fmt::format("\nImages and counters.json of {} traces are in {}/\n", files.size(), out.string());
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"passim: a bit-accurate model of the OpenGL 1.2 + imaging pipeline, for multipass algorithms"};
+  app.require_subcommand(0, 1);
+  app.footer("Exit status: 0 ok, 1 trace or run error (message names file:line), 2 usage, "
+             "3 output differs from --expect.\nDocs: README.md, docs/.");
+
+  auto* run = app.add_subcommand("run", "Replay a .pass trace: write its @output images and counters.json");
+  std::string trace_file, out_dir = "out", expect, record;
+  bool strict = false, tiff = false, write_expected = false, quiet = false;
+  run->add_option("trace", trace_file, "The .pass trace to replay")->required();
+  run->add_option("--out,-o", out_dir, "Directory for images and counters.json")->capture_default_str();
+  run->add_flag("--strict", strict, "Make any GL error fatal (exit 1)");
+  run->add_option("--expect", expect, "Check image hashes and counters against this JSON file (exit 3 if they differ)");
+  run->add_option("--record", record, "Also write the replay, re-recorded, as a canonical .pass trace");
+  run->add_flag("--tiff", tiff, "Write colour images wider than 8 bits as 16-bit TIFF instead of 16-bit PNG");
+  run->add_flag("--write-expected", write_expected, "Also write DIR/expected.json (hashes and counters of this run)");
+  run->add_flag("--quiet,-q", quiet, "Print nothing but errors");
+
+  auto* info = app.add_subcommand("info", "List machine profiles with their widths and limits");
+  bool calls = false;
+  info->add_flag("--calls", calls, "List the GL calls traces may use, with their signatures");
+
+  auto* demo = app.add_subcommand("demo", "The main job on built-in defaults (what the quick start runs)");
+  std::string demo_out = "out";
+  demo->add_option("--out,-o", demo_out, "Output directory")->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kUsage;
+  }
+  if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
+  if (*info) return info_command(calls);
+  if (*demo || app.get_subcommands().empty()) {
+    if (app.get_subcommands().empty()) {
+      std::cout << app.help() << "\n";
+      return kOk;
+    }
+    return demo_command(demo_out);
+  }
+  return kOk;
+}

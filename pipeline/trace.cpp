@@ -1,0 +1,781 @@
+// .pass traces: parsing, replay and writing (docs/trace-format.md).
+#include "pipeline/trace.hpp"
+
+#include <fmt/format.h>
+#include <tiny_obj_loader.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "pipeline/fixed_point.hpp"
+
+namespace passim {
+
+TraceError::TraceError(const std::string& f, int l, const std::string& m)
+    : std::runtime_error(fmt::format("{}:{}: {}", f, l, m)), file(f), line(l), message(m) {}
+
+// ------------------------------------------------------------------ settings
+
+std::vector<std::string> TraceSettings::header_lines() const {
+  const FramebufferConfig& f = framebuffer;
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format("@profile {}", profile));
+  lines.push_back(fmt::format("@framebuffer {}x{} color={},{},{},{} depth={} stencil={} accum={} double={}", f.width,
+                              f.height, f.color_bits[0], f.color_bits[1], f.color_bits[2], f.color_bits[3],
+                              f.depth_bits, f.stencil_bits, f.accum_bits, f.double_buffer ? "yes" : "no"));
+  lines.push_back(fmt::format("@subpixel {}", machine().limits.subpixel_bits));
+  return lines;
+}
+
+MachineProfile TraceSettings::machine() const {
+  const MachineProfile* p = find_profile(profile);
+  MachineProfile m = p ? *p : machine_profiles().front();
+  if (subpixel_bits >= 0) m.limits.subpixel_bits = subpixel_bits;
+  return m;
+}
+
+// ------------------------------------------------------------------ images
+
+std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_code) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (std::uint32_t c : codes) {
+    for (int b = 0; b < bytes_per_code; ++b) {
+      h ^= (c >> (8 * b)) & 0xFFu;
+      h *= 0x100000001b3ull;
+    }
+  }
+  return fmt::format("{:016x}", h);
+}
+
+CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane, GLenum buffer) {
+  const Framebuffer& fb = ctx.framebuffer();
+  CapturedImage img;
+  img.name = name;
+  img.plane = plane;
+  img.width = fb.width();
+  img.height = fb.height();
+  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+  if (plane == "color") {
+    const ColorPlane* cp = ctx.color_buffer(buffer);
+    img.buffer = enum_name(buffer, EnumRole::Buffer);
+    img.bits = fb.config.color_bits;
+    img.channels = 4;
+    img.codes.assign(cp->rgba.begin(), cp->rgba.end());
+    img.hash = fnv1a_hex(img.codes, 2);
+  } else if (plane == "depth") {
+    img.bits = {fb.config.depth_bits, 0, 0, 0};
+    img.channels = 1;
+    img.codes.assign(fb.depth.begin(), fb.depth.end());
+    if (img.codes.empty()) img.codes.assign(n, 0);
+    img.hash = fnv1a_hex(img.codes, 4);
+  } else {
+    img.bits = {fb.config.stencil_bits, 0, 0, 0};
+    img.channels = 1;
+    img.codes.assign(fb.stencil.begin(), fb.stencil.end());
+    if (img.codes.empty()) img.codes.assign(n, 0);
+    img.hash = fnv1a_hex(img.codes, 1);
+  }
+  return img;
+}
+
+// ------------------------------------------------------------------ lexing
+
+namespace {
+
+struct Statement {
+  std::string text;
+  int line = 0;
+};
+
+// Splits the text into statements: comments (# or //, outside strings) removed, a
+// statement continuing over lines while its parentheses or braces are open.
+std::vector<Statement> split_statements(const std::string& text, const std::string& name) {
+  std::vector<Statement> out;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  Statement pending;
+  int depth = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::string clean;
+    bool in_string = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      char c = line[i];
+      if (in_string) {
+        clean += c;
+        if (c == '\\' && i + 1 < line.size()) clean += line[++i];
+        else if (c == '"') in_string = false;
+        continue;
+      }
+      if (c == '"') in_string = true;
+      if (c == '#' || (c == '/' && i + 1 < line.size() && line[i + 1] == '/')) break;
+      if (c == '(' || c == '{') ++depth;
+      if (c == ')' || c == '}') --depth;
+      clean += c;
+    }
+    if (in_string) throw TraceError(name, line_no, "unterminated string");
+    if (pending.text.empty()) pending.line = line_no;
+    if (!pending.text.empty()) pending.text += ' ';
+    pending.text += clean;
+    if (depth <= 0) {
+      if (depth < 0) throw TraceError(name, pending.line, "unbalanced ')' or '}'");
+      if (pending.text.find_first_not_of(" \t") != std::string::npos) out.push_back(pending);
+      pending = Statement{};
+      depth = 0;
+    }
+  }
+  if (!pending.text.empty() && pending.text.find_first_not_of(" \t") != std::string::npos)
+    throw TraceError(name, pending.line, "statement not closed: missing ')' or '}' before the end of the file");
+  return out;
+}
+
+struct Cursor {
+  const std::string& s;
+  std::size_t pos = 0;
+  void skip_ws() {
+    while (pos < s.size() && (s[pos] == ' ' || s[pos] == '\t')) ++pos;
+  }
+  bool at_end() {
+    skip_ws();
+    return pos >= s.size();
+  }
+  char peek() {
+    skip_ws();
+    return pos < s.size() ? s[pos] : '\0';
+  }
+  bool eat(char c) {
+    if (peek() == c) {
+      ++pos;
+      return true;
+    }
+    return false;
+  }
+  std::string identifier() {
+    skip_ws();
+    std::size_t start = pos;
+    while (pos < s.size() && (std::isalnum(static_cast<unsigned char>(s[pos])) || s[pos] == '_')) ++pos;
+    return s.substr(start, pos - start);
+  }
+  // A number-like or name-like token: letters, digits, sign, '.', '+', '-' (exponents), 'x'.
+  std::string word() {
+    skip_ws();
+    std::size_t start = pos;
+    while (pos < s.size()) {
+      char c = s[pos];
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '+' || c == '-') ++pos;
+      else break;
+    }
+    return s.substr(start, pos - start);
+  }
+  std::string string_literal() {
+    // precondition: peek() == '"'
+    ++pos;
+    std::string out;
+    while (pos < s.size() && s[pos] != '"') {
+      char c = s[pos++];
+      if (c == '\\' && pos < s.size()) {
+        char e = s[pos++];
+        if (e == 'n') out += '\n';
+        else if (e == 't') out += '\t';
+        else if (e == 'x' && pos + 1 < s.size()) {
+          out += static_cast<char>(std::stoi(s.substr(pos, 2), nullptr, 16));
+          pos += 2;
+        } else out += e;
+      } else {
+        out += c;
+      }
+    }
+    ++pos;  // closing quote
+    return out;
+  }
+};
+
+// A parsed argument before its parameter kind gives it meaning.
+struct Arg {
+  enum Kind { Expr, String, Array, File, Null } kind = Expr;
+  std::vector<std::string> terms;  // Expr: terms joined by '|'; Array: elements
+  std::string text;                // String / File
+};
+
+Arg parse_arg(Cursor& c, const std::function<void(const std::string&)>& fail) {
+  // "name = value" (apitrace dump style): drop the name.
+  {
+    std::size_t save = c.pos;
+    std::string id = c.identifier();
+    c.skip_ws();
+    if (!id.empty() && c.pos < c.s.size() && c.s[c.pos] == '=' && (c.pos + 1 >= c.s.size() || c.s[c.pos + 1] != '='))
+      ++c.pos;
+    else
+      c.pos = save;
+  }
+  Arg a;
+  char p = c.peek();
+  if (p == '"') {
+    a.kind = Arg::String;
+    a.text = c.string_literal();
+    return a;
+  }
+  if (p == '{') {
+    ++c.pos;
+    a.kind = Arg::Array;
+    if (c.eat('}')) return a;
+    while (true) {
+      std::string w = c.word();
+      if (w.empty()) fail("expected a number in the array");
+      a.terms.push_back(w);
+      if (c.eat('}')) break;
+      if (!c.eat(',')) fail("expected ',' or '}' in the array");
+      if (c.eat('}')) break;  // trailing comma
+    }
+    return a;
+  }
+  std::string w = c.word();
+  if (w == "file" && c.peek() == '(') {
+    ++c.pos;
+    if (c.peek() != '"') fail("file(...) takes a quoted path");
+    a.kind = Arg::File;
+    a.text = c.string_literal();
+    if (!c.eat(')')) fail("expected ')' after the file path");
+    return a;
+  }
+  if (w == "NULL" || w == "nullptr") {
+    a.kind = Arg::Null;
+    return a;
+  }
+  if (w.empty()) fail("expected an argument");
+  a.terms.push_back(w);
+  while (c.eat('|')) {
+    std::string t = c.word();
+    if (t.empty()) fail("expected a term after '|'");
+    a.terms.push_back(t);
+  }
+  return a;
+}
+
+template <class T>
+std::optional<T> parse_number(const std::string& w) {
+  if constexpr (std::is_floating_point_v<T>) {
+    std::string_view v = w;
+    bool neg = false;
+    if (!v.empty() && (v[0] == '-' || v[0] == '+')) {
+      neg = v[0] == '-';
+      v.remove_prefix(1);
+    }
+    T out{};
+    std::from_chars_result r;
+    if (v.size() > 2 && v[0] == '0' && (v[1] == 'x' || v[1] == 'X')) {
+      v.remove_prefix(2);
+      r = std::from_chars(v.data(), v.data() + v.size(), out, std::chars_format::hex);
+    } else {
+      r = std::from_chars(v.data(), v.data() + v.size(), out);
+    }
+    if (r.ec != std::errc() || r.ptr != v.data() + v.size()) return std::nullopt;
+    return neg ? -out : out;
+  } else {
+    std::string_view v = w;
+    bool neg = false;
+    if (!v.empty() && (v[0] == '-' || v[0] == '+')) {
+      neg = v[0] == '-';
+      v.remove_prefix(1);
+    }
+    int base = 10;
+    if (v.size() > 2 && v[0] == '0' && (v[1] == 'x' || v[1] == 'X')) {
+      v.remove_prefix(2);
+      base = 16;
+    }
+    std::uint64_t out = 0;
+    auto r = std::from_chars(v.data(), v.data() + v.size(), out, base);
+    if (r.ec != std::errc() || r.ptr != v.data() + v.size() || v.empty()) return std::nullopt;
+    if (out > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) return std::nullopt;
+    const std::int64_t s = neg ? -static_cast<std::int64_t>(out) : static_cast<std::int64_t>(out);
+    return static_cast<T>(s);
+  }
+}
+
+GLenum array_elem_type(char kind) {
+  switch (kind) {
+    case 'F': return GL_FLOAT;
+    case 'D': return GL_DOUBLE;
+    case 'I': return GL_INT;
+    case 'U': return GL_UNSIGNED_INT;
+    case 'B': return GL_UNSIGNED_BYTE;
+    default: return 0;
+  }
+}
+
+// ------------------------------------------------------------------ replay
+
+class Replayer {
+ public:
+  Replayer(const std::string& name, std::filesystem::path base, const ReplayOptions& options)
+      : name_(name), base_(std::move(base)), options_(options) {}
+
+  ReplayResult run(const std::string& text) {
+    std::vector<Statement> statements = split_statements(text, name_);
+    bool seen_version = false;
+    for (const Statement& st : statements) {
+      line_ = st.line;
+      Cursor c{st.text};
+      if (!seen_version) {
+        std::string w = c.word();
+        if (w != "passim-trace") fail("the first line of a trace must be 'passim-trace 1'");
+        std::string v = c.word();
+        auto version = parse_number<std::int64_t>(v);
+        if (!version) fail("'passim-trace' takes the format version, e.g. 'passim-trace 1'");
+        if (*version != kTraceFormatVersion)
+          fail(fmt::format("trace format version {} is not supported (this passim reads version {})", *version,
+                           kTraceFormatVersion));
+        if (!c.at_end()) fail("unexpected text after the format version");
+        seen_version = true;
+        continue;
+      }
+      if (c.peek() == '@') {
+        ++c.pos;
+        directive(c);
+      } else {
+        call(c);
+      }
+    }
+    if (!seen_version) {
+      line_ = 1;
+      fail("empty trace: the first line must be 'passim-trace 1'");
+    }
+    ensure_context();
+    result_.context->check_balance();
+    return std::move(result_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& message) const { throw TraceError(name_, line_, message); }
+
+  void ensure_context() {
+    if (result_.context) return;
+    TraceSettings& s = result_.settings;
+    const MachineProfile* profile = find_profile(profile_name_);
+    if (!profile) fail(fmt::format("unknown machine profile '{}' (see 'passim info')", profile_name_));
+    s.profile = profile_name_;
+    FramebufferConfig f;
+    f.color_bits = profile->color_bits;
+    f.depth_bits = profile->depth_bits;
+    f.stencil_bits = profile->stencil_bits;
+    f.accum_bits = profile->accum_bits;
+    for (const auto& [key, value] : fb_overrides_) apply_framebuffer_setting(f, key, value);
+    if (!fb_overrides_.count("accum") && fb_overrides_.count("color"))
+      f.accum_bits = FramebufferConfig::default_accum_bits(f.color_bits);
+    s.framebuffer = f;
+    s.subpixel_bits = subpixel_;
+    MachineProfile m = s.machine();
+    if (m.limits.subpixel_bits < 0 || m.limits.subpixel_bits > 12) fail("@subpixel takes 0..12");
+    std::string err = f.validate(m.limits.max_framebuffer_size);
+    if (!err.empty()) fail(err);
+    result_.context = std::make_unique<Context>(f, m);
+    if (options_.record) {
+      options_.record->write_header(s);
+      result_.context->set_call_sink(options_.record);
+    }
+  }
+
+  void apply_framebuffer_setting(FramebufferConfig& f, const std::string& key, const std::string& value) {
+    auto integer = [&](const std::string& v) {
+      auto n = parse_number<std::int64_t>(v);
+      if (!n || *n < 0 || *n > 1000000) fail(fmt::format("@framebuffer {}={}: expected a whole number", key, v));
+      return static_cast<int>(*n);
+    };
+    if (key == "size") {
+      std::size_t x = value.find('x');
+      if (x == std::string::npos) fail("@framebuffer size must be WIDTHxHEIGHT, e.g. 800x600");
+      f.width = integer(value.substr(0, x));
+      f.height = integer(value.substr(x + 1));
+    } else if (key == "color") {
+      std::vector<int> bits;
+      std::stringstream ss(value);
+      std::string part;
+      while (std::getline(ss, part, ',')) bits.push_back(integer(part));
+      if (bits.size() == 1) f.color_bits = {bits[0], bits[0], bits[0], bits[0]};
+      else if (bits.size() == 4) f.color_bits = {bits[0], bits[1], bits[2], bits[3]};
+      else if (bits.size() == 3) f.color_bits = {bits[0], bits[1], bits[2], 0};
+      else fail("@framebuffer color= takes one width, R,G,B or R,G,B,A");
+    } else if (key == "depth") {
+      f.depth_bits = integer(value);
+    } else if (key == "stencil") {
+      f.stencil_bits = integer(value);
+    } else if (key == "accum") {
+      f.accum_bits = integer(value);
+    } else if (key == "double") {
+      if (value != "yes" && value != "no") fail("@framebuffer double= takes yes or no");
+      f.double_buffer = value == "yes";
+    } else {
+      fail(fmt::format("unknown @framebuffer setting '{}' (size, color, depth, stencil, accum, double)", key));
+    }
+  }
+
+  void directive(Cursor& c) {
+    const std::string d = c.identifier();
+    auto rest_words = [&] {
+      std::vector<std::string> words;
+      while (!c.at_end()) {
+        if (c.peek() == '"') {
+          words.push_back(c.string_literal());
+          continue;
+        }
+        std::size_t start = c.pos;
+        while (c.pos < c.s.size() && c.s[c.pos] != ' ' && c.s[c.pos] != '\t') ++c.pos;
+        words.push_back(c.s.substr(start, c.pos - start));
+      }
+      return words;
+    };
+    const bool header = d == "profile" || d == "framebuffer" || d == "subpixel";
+    if (header && result_.context) fail(fmt::format("@{} must come before the first GL call", d));
+    std::vector<std::string> w = rest_words();
+    if (d == "profile") {
+      if (w.size() != 1) fail("@profile takes one name (see 'passim info')");
+      if (!find_profile(w[0])) fail(fmt::format("unknown machine profile '{}' (see 'passim info')", w[0]));
+      profile_name_ = w[0];
+    } else if (d == "framebuffer") {
+      for (const std::string& item : w) {
+        std::size_t eq = item.find('=');
+        if (eq == std::string::npos) fb_overrides_["size"] = item;
+        else fb_overrides_[item.substr(0, eq)] = item.substr(eq + 1);
+      }
+      FramebufferConfig probe;
+      for (const auto& [k, v] : fb_overrides_) apply_framebuffer_setting(probe, k, v);
+    } else if (d == "subpixel") {
+      if (w.size() != 1) fail("@subpixel takes one number of bits");
+      auto n = parse_number<std::int64_t>(w[0]);
+      if (!n || *n < 0 || *n > 12) fail("@subpixel takes 0..12");
+      subpixel_ = static_cast<int>(*n);
+    } else if (d == "output") {
+      ensure_context();
+      output(w);
+    } else if (d == "swap") {
+      ensure_context();
+      if (!w.empty()) fail("@swap takes no arguments");
+      result_.context->swap_buffers();
+      if (options_.record) options_.record->swap();
+    } else if (d == "mesh") {
+      ensure_context();
+      if (w.size() != 1) fail("@mesh takes one OBJ file name");
+      mesh(w[0]);
+    } else {
+      fail(fmt::format("unknown directive '@{}' (profile, framebuffer, subpixel, output, swap, mesh)", d));
+    }
+  }
+
+  void output(const std::vector<std::string>& w) {
+    if (w.empty() || w.size() > 3) fail("@output takes NAME [color|depth|stencil] [buffer]");
+    const std::string& name = w[0];
+    for (char ch : name)
+      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.')
+        fail(fmt::format("@output name '{}' may hold only letters, digits, '_', '-' and '.'", name));
+    for (const CapturedImage& img : result_.images)
+      if (img.name == name) fail(fmt::format("@output '{}' is already used in this trace", name));
+    std::string plane = w.size() >= 2 ? w[1] : "color";
+    if (plane != "color" && plane != "depth" && plane != "stencil")
+      fail(fmt::format("@output plane '{}' is not color, depth or stencil", plane));
+    Context& ctx = *result_.context;
+    GLint read_buffer = 0;
+    ctx.glGetIntegerv(GL_READ_BUFFER, &read_buffer);
+    GLenum buffer = static_cast<GLenum>(read_buffer);
+    if (w.size() == 3) {
+      auto v = enum_value(w[2]);
+      if (!v) fail(fmt::format("unknown buffer '{}'", w[2]));
+      buffer = *v;
+    }
+    if (plane == "color" && !ctx.color_buffer(buffer))
+      fail(fmt::format("@output {}: the framebuffer has no buffer {}", name, w.size() == 3 ? w[2] : "to read"));
+    if (plane == "depth" && ctx.config().depth_bits == 0) fail("@output depth: the framebuffer has no depth plane");
+    if (plane == "stencil" && ctx.config().stencil_bits == 0)
+      fail("@output stencil: the framebuffer has no stencil plane");
+    result_.images.push_back(capture_plane(ctx, name, plane, buffer));
+    if (options_.record) options_.record->output(name, plane, enum_name(buffer, EnumRole::Buffer));
+  }
+
+  void mesh(const std::string& file) {
+    const std::filesystem::path path = base_ / file;
+    tinyobj::ObjReader reader;
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    if (!reader.ParseFromFile(path.string(), config))
+      fail(fmt::format("cannot read mesh '{}': {}", path.string(), reader.Error()));
+    const auto& attrib = reader.GetAttrib();
+    Context& ctx = *result_.context;
+    ctx.set_source_location(fmt::format("{}:{}", name_, line_));
+    ctx.glBegin(GL_TRIANGLES);
+    for (const auto& shape : reader.GetShapes()) {
+      for (const auto& idx : shape.mesh.indices) {
+        if (idx.normal_index >= 0) {
+          const float* n = &attrib.normals[3 * static_cast<std::size_t>(idx.normal_index)];
+          ctx.glNormal3f(n[0], n[1], n[2]);
+        }
+        const float* v = &attrib.vertices[3 * static_cast<std::size_t>(idx.vertex_index)];
+        ctx.glVertex3f(v[0], v[1], v[2]);
+      }
+    }
+    ctx.glEnd();
+    report_errors();
+  }
+
+  Value convert(const Arg& a, const CallInfo::Param& p, const CallInfo& info, std::size_t index,
+                const std::vector<Value>& done) {
+    Value v;
+    auto need_expr = [&] {
+      if (a.kind != Arg::Expr)
+        fail(fmt::format("{}: argument {} must be a {}", info.name, index + 1, "number or enum"));
+    };
+    auto enum_term = [&](const std::string& t) -> std::int64_t {
+      if (t.rfind("GL_", 0) == 0) {
+        auto e = enum_value(t);
+        if (!e) fail(fmt::format("{}: unknown enum '{}'", info.name, t));
+        return *e;
+      }
+      auto n = parse_number<std::int64_t>(t);
+      if (!n) fail(fmt::format("{}: argument {}: '{}' is not an enum or a whole number", info.name, index + 1, t));
+      return *n;
+    };
+    switch (p.kind) {
+      case 'e': case 'm': case 'n': case 'b': case 'x': {
+        need_expr();
+        std::int64_t acc = 0;
+        for (const std::string& t : a.terms) acc |= enum_term(t);
+        if (acc < std::numeric_limits<std::int32_t>::min() || acc > std::numeric_limits<std::uint32_t>::max())
+          fail(fmt::format("{}: argument {} is out of range", info.name, index + 1));
+        v.i = acc;
+        return v;
+      }
+      case 'z': {
+        need_expr();
+        const std::string& t = a.terms[0];
+        if (t == "GL_TRUE" || t == "true" || t == "1") v.i = 1;
+        else if (t == "GL_FALSE" || t == "false" || t == "0") v.i = 0;
+        else fail(fmt::format("{}: argument {} must be GL_TRUE or GL_FALSE, not '{}'", info.name, index + 1, t));
+        return v;
+      }
+      case 'i': case 'u': {
+        need_expr();
+        if (a.terms.size() != 1) fail(fmt::format("{}: argument {} must be a whole number", info.name, index + 1));
+        auto n = parse_number<std::int64_t>(a.terms[0]);
+        if (!n) fail(fmt::format("{}: argument {}: '{}' is not a whole number", info.name, index + 1, a.terms[0]));
+        const bool ok = p.kind == 'i' ? (*n >= std::numeric_limits<std::int32_t>::min() &&
+                                         *n <= std::numeric_limits<std::int32_t>::max())
+                                      : (*n >= 0 && *n <= std::numeric_limits<std::uint32_t>::max());
+        if (!ok) fail(fmt::format("{}: argument {} ({}) is out of range", info.name, index + 1, *n));
+        v.i = *n;
+        return v;
+      }
+      case 'f': case 'y': case 'd': {
+        need_expr();
+        if (a.terms.size() != 1) fail(fmt::format("{}: argument {} must be a number", info.name, index + 1));
+        const std::string& t = a.terms[0];
+        if (p.kind == 'y' && t.rfind("GL_", 0) == 0) {
+          v.d = static_cast<double>(enum_term(t));
+          return v;
+        }
+        if (p.kind == 'd') {
+          auto d = parse_number<double>(t);
+          if (!d) fail(fmt::format("{}: argument {}: '{}' is not a number", info.name, index + 1, t));
+          v.d = *d;
+        } else {
+          auto f = parse_number<float>(t);
+          if (!f) fail(fmt::format("{}: argument {}: '{}' is not a number", info.name, index + 1, t));
+          v.d = *f;
+        }
+        return v;
+      }
+      case 's':
+        if (a.kind != Arg::String) fail(fmt::format("{}: argument {} must be a quoted string", info.name, index + 1));
+        v.s = a.text;
+        return v;
+      case 'O':
+        return v;
+      default:
+        break;
+    }
+    // Arrays.
+    GLenum type = array_elem_type(p.kind);
+    if (p.kind == 'V') {
+      for (std::size_t k = index; k-- > 0;)
+        if (info.params[k].kind == 'e') {
+          type = static_cast<GLenum>(done[k].i);
+          break;
+        }
+    }
+    const int size = type_size(type);
+    if (size == 0) fail(fmt::format("{}: unknown data type {} for argument {}", info.name, enum_name(type), index + 1));
+    v.elem_type = type;
+    auto bytes = std::make_shared<std::vector<std::byte>>();
+    if (a.kind == Arg::Null) {
+      v.count = 0;
+    } else if (a.kind == Arg::File) {
+      const std::filesystem::path path = base_ / a.text;
+      std::ifstream in(path, std::ios::binary);
+      if (!in) fail(fmt::format("cannot read side file '{}'", path.string()));
+      std::vector<char> raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (raw.size() % static_cast<std::size_t>(size) != 0)
+        fail(fmt::format("side file '{}' holds {} bytes, not a whole number of {}-byte elements", a.text, raw.size(),
+                         size));
+      bytes->resize(raw.size());
+      std::memcpy(bytes->data(), raw.data(), raw.size());
+      v.count = raw.size() / static_cast<std::size_t>(size);
+    } else if (a.kind == Arg::Array) {
+      bytes->resize(a.terms.size() * static_cast<std::size_t>(size));
+      for (std::size_t k = 0; k < a.terms.size(); ++k) {
+        std::byte* dst = bytes->data() + k * static_cast<std::size_t>(size);
+        const std::string& t = a.terms[k];
+        auto bad = [&] { fail(fmt::format("{}: array element {} '{}' is not a valid {}", info.name, k + 1, t, enum_name(type))); };
+        auto store_int = [&](auto tag, std::int64_t lo, std::int64_t hi) {
+          auto n = parse_number<std::int64_t>(t);
+          if (!n || *n < lo || *n > hi) bad();
+          decltype(tag) x = static_cast<decltype(tag)>(*n);
+          std::memcpy(dst, &x, sizeof(x));
+        };
+        switch (type) {
+          case GL_FLOAT: { auto f = parse_number<float>(t); if (!f) bad(); std::memcpy(dst, &*f, 4); break; }
+          case GL_DOUBLE: { auto d = parse_number<double>(t); if (!d) bad(); std::memcpy(dst, &*d, 8); break; }
+          case GL_INT: store_int(std::int32_t{}, INT32_MIN, INT32_MAX); break;
+          case GL_UNSIGNED_INT: store_int(std::uint32_t{}, 0, UINT32_MAX); break;
+          case GL_SHORT: store_int(std::int16_t{}, INT16_MIN, INT16_MAX); break;
+          case GL_UNSIGNED_SHORT: store_int(std::uint16_t{}, 0, UINT16_MAX); break;
+          case GL_BYTE: store_int(std::int8_t{}, INT8_MIN, INT8_MAX); break;
+          default: store_int(std::uint8_t{}, 0, UINT8_MAX); break;
+        }
+      }
+      v.count = a.terms.size();
+    } else {
+      fail(fmt::format("{}: argument {} must be an array {{...}}, file(\"...\") or NULL", info.name, index + 1));
+    }
+    v.bytes = std::move(bytes);
+    // Element counts the call will read.
+    std::size_t need = 0;
+    if (p.count_rule == 'n') need = static_cast<std::size_t>(p.fixed_count);
+    if (p.count_rule == 'p') {
+      for (std::size_t k = index; k-- > 0;)
+        if (info.params[k].kind == 'e') {
+          need = static_cast<std::size_t>(pname_count(static_cast<GLenum>(done[k].i)));
+          break;
+        }
+    }
+    if (v.count < need)
+      fail(fmt::format("{}: argument {} needs {} values, the trace gives {}", info.name, index + 1, need, v.count));
+    return v;
+  }
+
+  void call(Cursor& c) {
+    // An optional leading call number (apitrace dump).
+    if (std::isdigit(static_cast<unsigned char>(c.peek()))) c.word();
+    const std::string fn = c.identifier();
+    if (fn.empty()) fail(fmt::format("expected a GL call, found '{}'", c.s.substr(c.pos, 40)));
+    const CallInfo* info = find_call(fn);
+    if (!info) fail(fmt::format("unknown call '{}' (see docs/trace-format.md for the calls passim knows)", fn));
+    if (!c.eat('(')) fail(fmt::format("expected '(' after {}", fn));
+    std::vector<Arg> args;
+    auto failer = [&](const std::string& m) { fail(fmt::format("{}: {}", fn, m)); };
+    if (!c.eat(')')) {
+      while (true) {
+        args.push_back(parse_arg(c, failer));
+        if (c.eat(')')) break;
+        if (!c.eat(',')) fail(fmt::format("{}: expected ',' or ')' after argument {}", fn, args.size()));
+      }
+    }
+    if (c.eat('=')) c.pos = c.s.size();  // a recorded return value: ignored
+    if (!c.at_end()) fail(fmt::format("unexpected text after {}(...)", fn));
+    if (args.size() != info->params.size())
+      fail(fmt::format("{} takes {} arguments, the trace gives {}", fn, info->params.size(), args.size()));
+    std::vector<Value> values;
+    for (std::size_t k = 0; k < args.size(); ++k) values.push_back(convert(args[k], info->params[k], *info, k, values));
+    // Pointer arguments whose length another argument gives.
+    if (fn == "glDrawElements" && values[1].i > 0 && values[3].count < static_cast<std::size_t>(values[1].i))
+      fail(fmt::format("glDrawElements: count is {} but {} indices are given", values[1].i, values[3].count));
+    if (fn == "glCallLists" && values[0].i > 0 && values[2].count < static_cast<std::size_t>(values[0].i))
+      fail(fmt::format("glCallLists: n is {} but {} names are given", values[0].i, values[2].count));
+
+    ensure_context();
+    Context& ctx = *result_.context;
+    ctx.set_source_location(fmt::format("{}:{}", name_, line_));
+    try {
+      info->invoke(ctx, values);
+    } catch (const ClientDataError& e) {
+      fail(e.what());
+    }
+    if (info->recorded_at_draw) {
+      static const std::map<std::string_view, GLenum> arrays = {{"glVertexPointer", GL_VERTEX_ARRAY},
+                                                                 {"glNormalPointer", GL_NORMAL_ARRAY},
+                                                                 {"glColorPointer", GL_COLOR_ARRAY},
+                                                                 {"glTexCoordPointer", GL_TEXTURE_COORD_ARRAY}};
+      const Value& data = values.back();
+      ctx.set_client_array_extent(arrays.at(info->name), data.bytes ? data.bytes->size() : 0);
+      keep_alive_.push_back(data.bytes);
+    }
+    report_errors();
+  }
+
+  void report_errors() {
+    const auto& log = result_.context->error_log();
+    for (; reported_errors_ < log.size(); ++reported_errors_) {
+      const GlErrorRecord& e = log[reported_errors_];
+      std::string msg = fmt::format("{} raised by {}", enum_name(e.error), e.call);
+      if (options_.diagnostics) *options_.diagnostics << fmt::format("{}: {}\n", e.where, msg);
+      if (options_.strict) fail(msg + " (--strict)");
+    }
+  }
+
+  std::string name_;
+  std::filesystem::path base_;
+  ReplayOptions options_;
+  int line_ = 0;
+  std::string profile_name_ = "ideal";
+  std::map<std::string, std::string> fb_overrides_;
+  int subpixel_ = -1;
+  ReplayResult result_;
+  std::size_t reported_errors_ = 0;
+  std::vector<std::shared_ptr<const std::vector<std::byte>>> keep_alive_;
+};
+
+}  // namespace
+
+ReplayResult replay_trace_text(const std::string& text, const std::string& name, const std::filesystem::path& base,
+                               const ReplayOptions& options) {
+  Replayer r(name, base, options);
+  return r.run(text);
+}
+
+ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions& options) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw TraceError(file.string(), 0, "cannot open the trace file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return replay_trace_text(ss.str(), file.string(), file.parent_path(), options);
+}
+
+// ------------------------------------------------------------------ writing
+
+void TraceWriter::write_header(const TraceSettings& settings) {
+  out_ << "passim-trace " << kTraceFormatVersion << "\n";
+  for (const std::string& line : settings.header_lines()) out_ << line << "\n";
+}
+
+void TraceWriter::on_call(const Call& call) { out_ << format_call(call) << "\n"; }
+
+void TraceWriter::output(const std::string& name, const std::string& plane, const std::string& buffer) {
+  out_ << "@output " << name << " " << plane;
+  if (plane == "color") out_ << " " << buffer;
+  out_ << "\n";
+}
+
+void TraceWriter::swap() { out_ << "@swap\n"; }
+
+void TraceWriter::comment(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out_ << "# " << line << "\n";
+}
+
+}  // namespace passim

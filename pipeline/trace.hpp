@@ -1,0 +1,89 @@
+// The .pass trace format (docs/trace-format.md): reading, replaying and writing.
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pipeline/context.hpp"
+#include "pipeline/framebuffer.hpp"
+#include "pipeline/profile.hpp"
+
+namespace passim {
+
+inline constexpr int kTraceFormatVersion = 1;
+
+// A malformed trace: the message names file and line.
+struct TraceError : std::runtime_error {
+  TraceError(const std::string& file, int line, const std::string& message);
+  std::string file;
+  int line;
+  std::string message;
+};
+
+// Every setting that affects the bits; a trace's header records all of them.
+struct TraceSettings {
+  std::string profile = "ideal";
+  FramebufferConfig framebuffer;
+  int subpixel_bits = -1;  // -1: the profile's
+  // The settings' header lines ("@framebuffer ...", ...).
+  std::vector<std::string> header_lines() const;
+  // The machine profile with the subpixel override applied.
+  MachineProfile machine() const;
+};
+
+// An image a trace asks for (@output) captured at that point of the replay.
+struct CapturedImage {
+  std::string name;
+  std::string plane;  // "color", "depth" or "stencil"
+  std::string buffer;  // colour buffer name ("GL_BACK") for colour planes
+  int width = 0, height = 0;
+  std::array<int, 4> bits{};  // colour widths, or {depth_bits,0,0,0} / {stencil_bits,...}
+  int channels = 4;
+  std::vector<std::uint32_t> codes;  // row 0 at the bottom, `channels` codes per pixel
+  std::string hash;  // FNV-1a 64 of the codes, hex
+};
+
+// Receives each GL error raised during a replay, with its trace location.
+struct ReplayOptions {
+  bool strict = false;           // a GL error ends the replay (TraceError)
+  class TraceWriter* record = nullptr;  // re-record every call (canonical form)
+  std::ostream* diagnostics = nullptr;  // GL errors reported here as they happen
+};
+
+struct ReplayResult {
+  TraceSettings settings;
+  std::unique_ptr<Context> context;
+  std::vector<CapturedImage> images;
+};
+
+// Replays a .pass file. Throws TraceError (with file:line) for malformed input,
+// missing side files and, with `strict`, GL errors.
+ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions& options = {});
+// The same from text (`name` is used in messages; side files resolve against `base_dir`).
+ReplayResult replay_trace_text(const std::string& text, const std::string& name,
+                               const std::filesystem::path& base_dir, const ReplayOptions& options = {});
+
+// Captures a plane of the context's framebuffer as an @output does.
+CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane,
+                            GLenum buffer);
+std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_code);
+
+// Writes a trace: header, then one canonical line per call.
+class TraceWriter final : public CallSink {
+ public:
+  explicit TraceWriter(std::ostream& out) : out_(out) {}
+  void write_header(const TraceSettings& settings);
+  void on_call(const Call& call) override;
+  // Directives that are not GL calls.
+  void output(const std::string& name, const std::string& plane, const std::string& buffer);
+  void swap();
+  void comment(const std::string& text);
+
+ private:
+  std::ostream& out_;
+};
+
+}  // namespace passim
