@@ -48,7 +48,7 @@ void Context::set_error(GLenum error) {
 }
 
 GLenum Context::glGetError() {
-  PASSIM_ENTRY_RET(GL_INVALID_OPERATION)
+  PASSIM_ENTRY_RET(GL_NO_ERROR)  // between Begin/End: INVALID_OPERATION, returns 0
   GLenum e = error_;
   error_ = GL_NO_ERROR;
   return e;

@@ -1,0 +1,262 @@
+// Rasterization: the edge rule, attribute interpolation, depth quantisation and
+// polygon offset, against values computed by hand.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "test_util.hpp"
+
+using namespace passim;
+using passim::test::pixel;
+
+namespace {
+
+// Additive blending of 1/255 per fragment: each pixel's red code counts its fragments.
+void count_fragments_mode(Context& ctx) {
+  ctx.glEnable(GL_BLEND);
+  ctx.glBlendFunc(GL_ONE, GL_ONE);
+  ctx.glColor4f(1.0f / 255.0f, 0, 0, 0);
+}
+
+void expect_every_pixel_once(const Context& ctx) {
+  const auto& c = ctx.config();
+  int wrong = 0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x)
+      if (pixel(ctx, x, y)[0] != 1u && ++wrong < 5) ADD_FAILURE() << "pixel " << x << "," << y << " written " << pixel(ctx, x, y)[0] << " times";
+  EXPECT_EQ(wrong, 0);
+}
+
+}  // namespace
+
+TEST(EdgeRule, FanTilingTheViewportWritesEveryPixelOnce) {
+  Context ctx(test::small_config(37, 29));
+  test::window_projection(ctx);
+  count_fragments_mode(ctx);
+  // A fan around an off-grid centre whose rim runs along the window border and through
+  // pixel centres and corners, so that many centres lie exactly on shared edges.
+  ctx.glBegin(GL_TRIANGLE_FAN);
+  ctx.glVertex2f(17.5f, 13.5f);
+  const float rim[][2] = {{0, 0}, {9.5f, 0}, {20, 0}, {37, 0}, {37, 14.5f}, {37, 29}, {18.5f, 29}, {0, 29}, {0, 12}, {0, 0}};
+  for (const auto& v : rim) ctx.glVertex2f(v[0], v[1]);
+  ctx.glEnd();
+  expect_every_pixel_once(ctx);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 37u * 29u);
+}
+
+TEST(EdgeRule, JitteredMeshWritesEveryPixelOnce) {
+  // A grid of quads split into triangles, interior vertices jittered by up to 0.45 px with
+  // positions on the 1/16 sub-pixel grid, both diagonals: every centre covered exactly once.
+  const int W = 48, H = 40, N = 6;
+  Context ctx(test::small_config(W, H));
+  test::window_projection(ctx);
+  count_fragments_mode(ctx);
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<int> jitter(-7, 7);
+  float vx[N + 1][N + 1], vy[N + 1][N + 1];
+  for (int j = 0; j <= N; ++j)
+    for (int i = 0; i <= N; ++i) {
+      vx[j][i] = static_cast<float>(W * i) / N + ((i > 0 && i < N) ? jitter(rng) / 16.0f : 0.0f);
+      vy[j][i] = static_cast<float>(H * j) / N + ((j > 0 && j < N) ? jitter(rng) / 16.0f : 0.0f);
+    }
+  ctx.glBegin(GL_TRIANGLES);
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i) {
+      auto v = [&](int a, int b) { ctx.glVertex2f(vx[j + b][i + a], vy[j + b][i + a]); };
+      if ((i + j) % 2) {
+        v(0, 0); v(1, 0); v(1, 1);
+        v(0, 0); v(1, 1); v(0, 1);
+      } else {
+        v(0, 0); v(1, 0); v(0, 1);
+        v(1, 0); v(1, 1); v(0, 1);
+      }
+    }
+  ctx.glEnd();
+  expect_every_pixel_once(ctx);
+}
+
+TEST(EdgeRule, CentreOnEdgesLeftBottomInRightTopOut) {
+  // Square [1,3] x [1,3] as two triangles: centres 1.5 and 2.5 are inside; a square
+  // [0.5, 2.5] has centres exactly on its left/bottom (inside) and right/top (outside) edges.
+  Context ctx(test::small_config(4, 4));
+  test::window_projection(ctx);
+  count_fragments_mode(ctx);
+  ctx.glBegin(GL_QUADS);
+  ctx.glVertex2f(0.5f, 0.5f);
+  ctx.glVertex2f(2.5f, 0.5f);
+  ctx.glVertex2f(2.5f, 2.5f);
+  ctx.glVertex2f(0.5f, 2.5f);
+  ctx.glEnd();
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(pixel(ctx, x, y)[0], (x <= 1 && y <= 1) ? 1u : 0u) << x << "," << y;
+}
+
+TEST(Interpolation, ScreenLinearWhenWIsOne) {
+  for (int bits : {8, 12}) {
+    Context ctx(test::small_config(8, 8, bits));
+    test::window_projection(ctx);
+    ctx.glBegin(GL_TRIANGLES);
+    ctx.glColor3f(1, 0, 0);
+    ctx.glVertex2f(0, 0);
+    ctx.glColor3f(0, 1, 0);
+    ctx.glVertex2f(8, 0);
+    ctx.glColor3f(0, 0, 1);
+    ctx.glVertex2f(0, 8);
+    ctx.glEnd();
+    // Centre (1.5, 1.5): weights 5/8 (red), 3/16 (green), 3/16 (blue).
+    const double m = (1 << bits) - 1;
+    const auto p = pixel(ctx, 1, 1);
+    EXPECT_EQ(p[0], static_cast<std::uint32_t>(std::floor(5.0 / 8.0 * m + 0.5)));  // 159 / 2559
+    EXPECT_EQ(p[1], static_cast<std::uint32_t>(std::floor(3.0 / 16.0 * m + 0.5)));  // 48 / 768
+    EXPECT_EQ(p[2], p[1]);
+    EXPECT_EQ(p[3], static_cast<std::uint32_t>(m));
+  }
+}
+
+TEST(Interpolation, PerspectiveCorrectColour) {
+  // Clip coordinates with w = 1, 2, 4 at window (0,0), (8,0), (0,8); identity matrices.
+  // At centre (1.5, 1.5) the screen weights 5/8, 3/16, 3/16 become, divided by w,
+  // 40/64, 6/64, 3/64: colours 40/49, 6/49, 3/49 (eq. 3.4).
+  Context c8(test::small_config(8, 8, 8));
+  Context c12(test::small_config(8, 8, 12));
+  for (Context* ctx : {&c8, &c12}) {
+    ctx->glBegin(GL_TRIANGLES);
+    ctx->glColor3f(1, 0, 0);
+    ctx->glVertex4f(-1, -1, 0, 1);
+    ctx->glColor3f(0, 1, 0);
+    ctx->glVertex4f(2, -2, 0, 2);
+    ctx->glColor3f(0, 0, 1);
+    ctx->glVertex4f(-4, 4, 0, 4);
+    ctx->glEnd();
+  }
+  const auto p8 = pixel(c8, 1, 1);
+  EXPECT_EQ(p8[0], 208u);  // 40/49·255 = 208.16
+  EXPECT_EQ(p8[1], 31u);   // 6/49·255 = 31.22
+  EXPECT_EQ(p8[2], 16u);   // 3/49·255 = 15.61
+  const auto p12 = pixel(c12, 1, 1);
+  EXPECT_EQ(p12[0], 3343u);  // 40/49·4095 = 3342.86
+  EXPECT_EQ(p12[1], 501u);   // 6/49·4095 = 501.43
+  EXPECT_EQ(p12[2], 251u);   // 3/49·4095 = 250.71
+}
+
+TEST(Depth, QuantisedToThePlaneWidth) {
+  for (int depth_bits : {16, 24, 32}) {
+    FramebufferConfig cfg = test::small_config(4, 4);
+    cfg.depth_bits = depth_bits;
+    Context ctx(cfg);
+    test::window_projection(ctx);
+    ctx.glEnable(GL_DEPTH_TEST);
+    ctx.glDepthFunc(GL_ALWAYS);
+    ctx.glBegin(GL_QUADS);  // object z 0.2 -> window z 0.4; z = -0.6 -> 0.8
+    ctx.glVertex3f(0, 0, 0.2f);
+    ctx.glVertex3f(4, 0, 0.2f);
+    ctx.glVertex3f(4, 4, 0.2f);
+    ctx.glVertex3f(0, 4, 0.2f);
+    ctx.glEnd();
+    const double m = static_cast<double>((std::uint64_t{1} << depth_bits) - 1);
+    // window z = (1 - float(0.2)) / 2 computed as the pipeline does (eq. 2.14): 0.5·(-zo) + 0.5
+    const double zw = -static_cast<double>(0.2f) * 0.5 + 0.5;
+    EXPECT_EQ(ctx.framebuffer().depth[5], static_cast<std::uint32_t>(std::floor(zw * m + 0.5))) << depth_bits;
+  }
+  // By hand: 16 bits, window z 0.5 -> 32767.5 -> 32768; 24 bits -> 8388608.
+  Context ctx(test::small_config(2, 2));
+  test::window_projection(ctx);
+  ctx.glClear(GL_DEPTH_BUFFER_BIT);  // to 1.0: LESS passes
+  ctx.glEnable(GL_DEPTH_TEST);
+  ctx.glBegin(GL_TRIANGLES);
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(4, 0);
+  ctx.glVertex2f(0, 4);
+  ctx.glEnd();
+  EXPECT_EQ(ctx.framebuffer().depth[0], 8388608u);
+}
+
+TEST(Depth, EveryFunction) {
+  // Stored 0.5 (code 8388608 at 24 bits); incoming 0.25, 0.5, 0.75 per column.
+  struct Case { GLenum func; bool less, equal, greater; };
+  const Case cases[] = {{GL_NEVER, false, false, false}, {GL_LESS, true, false, false},
+                        {GL_EQUAL, false, true, false}, {GL_LEQUAL, true, true, false},
+                        {GL_GREATER, false, false, true}, {GL_NOTEQUAL, true, false, true},
+                        {GL_GEQUAL, false, true, true}, {GL_ALWAYS, true, true, true}};
+  for (const Case& c : cases) {
+    Context ctx(test::small_config(3, 1));
+    test::window_projection(ctx);
+    ctx.glClearDepth(0.5);
+    ctx.glClear(GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT);
+    ctx.glEnable(GL_DEPTH_TEST);
+    ctx.glDepthFunc(c.func);
+    ctx.glColor3f(1, 1, 1);
+    const float z[3] = {0.5f, 0.0f, -0.5f};  // window 0.25, 0.5, 0.75
+    for (int i = 0; i < 3; ++i) {
+      ctx.glBegin(GL_QUADS);
+      ctx.glVertex3f(i, 0, z[i]);
+      ctx.glVertex3f(i + 1, 0, z[i]);
+      ctx.glVertex3f(i + 1, 1, z[i]);
+      ctx.glVertex3f(i, 1, z[i]);
+      ctx.glEnd();
+    }
+    EXPECT_EQ(pixel(ctx, 0, 0)[0], c.less ? 255u : 0u) << enum_name(c.func);
+    EXPECT_EQ(pixel(ctx, 1, 0)[0], c.equal ? 255u : 0u) << enum_name(c.func);
+    EXPECT_EQ(pixel(ctx, 2, 0)[0], c.greater ? 255u : 0u) << enum_name(c.func);
+    const Counters t = ctx.total_counters();
+    EXPECT_EQ(t.killed_depth, 3u - (c.less + c.equal + c.greater));
+  }
+}
+
+TEST(PolygonOffset, UnitsMoveByWholeDepthSteps) {
+  // A flat quad at window z 0.5 (slope 0): offset = r·units with r = 1/(2^24 - 1).
+  Context ctx(test::small_config(2, 2));
+  test::window_projection(ctx);
+  ctx.glEnable(GL_DEPTH_TEST);
+  ctx.glDepthFunc(GL_ALWAYS);
+  ctx.glEnable(GL_POLYGON_OFFSET_FILL);
+  ctx.glPolygonOffset(0, -3);
+  ctx.glBegin(GL_QUADS);
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(2, 0);
+  ctx.glVertex2f(2, 2);
+  ctx.glVertex2f(0, 2);
+  ctx.glEnd();
+  // 0.5·(2^24-1) = 8388607.5; minus 3 steps = 8388604.5 -> 8388605 (ties up).
+  EXPECT_EQ(ctx.framebuffer().depth[0], 8388605u);
+}
+
+TEST(Clipping, TriangleCrossingTheWindowEdgeIsCutNotLost) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  ctx.glColor3f(1, 1, 1);
+  ctx.glBegin(GL_TRIANGLES);  // half of it lies left of x = 0
+  ctx.glVertex2f(-8, 0);
+  ctx.glVertex2f(8, 0);
+  ctx.glVertex2f(-8, 8);
+  ctx.glEnd();
+  const Counters t = ctx.total_counters();
+  EXPECT_EQ(t.primitives_clipped, 1u);
+  // Visible part: x in [0,8], y <= (8 - x)/2 ... centres (x+.5, y+.5) with y+.5 < (8-(x+.5))/2.
+  std::uint64_t expected = 0;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const double cx = x + 0.5, cy = y + 0.5;
+      if (cy < (8.0 - cx) / 2.0) ++expected;  // no centre lies exactly on the hypotenuse here
+    }
+  EXPECT_EQ(t.fragments_generated, expected);
+}
+
+TEST(Culling, BackFacesCulledAndCounted) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  ctx.glEnable(GL_CULL_FACE);
+  ctx.glBegin(GL_TRIANGLES);
+  ctx.glVertex2f(0, 0);  // clockwise: back-facing
+  ctx.glVertex2f(0, 8);
+  ctx.glVertex2f(8, 0);
+  ctx.glVertex2f(0, 0);  // counter-clockwise: front-facing
+  ctx.glVertex2f(8, 0);
+  ctx.glVertex2f(0, 8);
+  ctx.glEnd();
+  EXPECT_EQ(ctx.total_counters().primitives_culled, 1u);
+  EXPECT_EQ(ctx.total_counters().primitives_in, 2u);
+  // Centres (x+.5, y+.5) inside x + y < 7; those with x + y = 7 lie on the hypotenuse, a
+  // right/top edge, so they are out: x + y <= 6 gives 7+6+...+1 = 28.
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 28u);
+}

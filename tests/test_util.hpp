@@ -1,0 +1,40 @@
+// Helpers shared by the tests.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "pipeline/context.hpp"
+
+namespace passim::test {
+
+inline FramebufferConfig small_config(int w, int h, int bits = 8) {
+  FramebufferConfig c;
+  c.width = w;
+  c.height = h;
+  c.color_bits = {bits, bits, bits, bits};
+  c.depth_bits = 24;
+  c.stencil_bits = 8;
+  c.accum_bits = FramebufferConfig::default_accum_bits(c.color_bits);
+  c.double_buffer = false;
+  return c;
+}
+
+// RGBA codes of pixel (x, y) of the front buffer.
+inline std::array<std::uint32_t, 4> pixel(const Context& ctx, int x, int y) {
+  const Framebuffer& fb = ctx.framebuffer();
+  const std::size_t p = 4 * fb.pixel_index(x, y);
+  const auto& c = fb.color[0].rgba;
+  return {c[p], c[p + 1], c[p + 2], c[p + 3]};
+}
+
+// Object coordinates = window coordinates; window z = (1 - z) / 2.
+inline void window_projection(Context& ctx) {
+  const FramebufferConfig& c = ctx.config();
+  ctx.glMatrixMode(GL_PROJECTION);
+  ctx.glLoadIdentity();
+  ctx.glOrtho(0, c.width, 0, c.height, -1, 1);
+  ctx.glMatrixMode(GL_MODELVIEW);
+  ctx.glLoadIdentity();
+}
+
+}  // namespace passim::test
