@@ -176,8 +176,8 @@ const std::vector<CallInfo>& table() {
       ROW(glColor4f, "ffff", kInBeginEnd),
       ROW(glColor3d, "ddd", kInBeginEnd),
       ROW(glColor4d, "dddd", kInBeginEnd),
-      ROW(glColor3ub, "uuu", kInBeginEnd),
-      ROW(glColor4ub, "uuuu", kInBeginEnd),
+      ROW(glColor3ub, "ccc", kInBeginEnd),
+      ROW(glColor4ub, "cccc", kInBeginEnd),
       ROW(glColor3fv, "F3", kInBeginEnd),
       ROW(glColor4fv, "F4", kInBeginEnd),
       ROW(glTexCoord1f, "f", kInBeginEnd),
@@ -374,7 +374,8 @@ std::string format_call(const Call& call) {
       case 'z': out += enum_name(static_cast<std::uint32_t>(v.i), EnumRole::Boolean); break;
       case 'b': out += bitfield_name(static_cast<std::uint32_t>(v.i)); break;
       case 'i':
-      case 'u': out += fmt::format("{}", v.i); break;
+      case 'u':
+      case 'c': out += fmt::format("{}", v.i); break;
       case 'x': {
         std::string name = v.i > 0xFF ? enum_name(static_cast<std::uint32_t>(v.i)) : "";
         out += (!name.empty() && name[0] == 'G') ? name : fmt::format("{}", v.i);

@@ -29,7 +29,7 @@ struct Value {
 
 // Signature letters, one per parameter:
 //   e enum   m primitive mode   n buffer enum (0 prints GL_NONE)   z GLboolean
-//   b bitfield   i int   u uint   f float   d double   s string
+//   b bitfield   i int   u uint   c GLubyte   f float   d double   s string
 //   x int that may hold an enum value   y float that may hold an enum value
 //   F const GLfloat*   D const GLdouble*   I const GLint*   U const GLuint*   B const GLubyte*
 //   V const void* whose element type is the closest preceding 'e' argument

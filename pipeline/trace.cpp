@@ -559,14 +559,16 @@ class Replayer {
         else fail(fmt::format("{}: argument {} must be GL_TRUE or GL_FALSE, not '{}'", info.name, index + 1, t));
         return v;
       }
-      case 'i': case 'u': {
+      case 'i': case 'u': case 'c': {
         need_expr();
         if (a.terms.size() != 1) fail(fmt::format("{}: argument {} must be a whole number", info.name, index + 1));
         auto n = parse_number<std::int64_t>(a.terms[0]);
         if (!n) fail(fmt::format("{}: argument {}: '{}' is not a whole number", info.name, index + 1, a.terms[0]));
-        const bool ok = p.kind == 'i' ? (*n >= std::numeric_limits<std::int32_t>::min() &&
-                                         *n <= std::numeric_limits<std::int32_t>::max())
-                                      : (*n >= 0 && *n <= std::numeric_limits<std::uint32_t>::max());
+        const std::int64_t lo = p.kind == 'i' ? std::numeric_limits<std::int32_t>::min() : 0;
+        const std::int64_t hi = p.kind == 'i'   ? std::numeric_limits<std::int32_t>::max()
+                                : p.kind == 'c' ? 255
+                                                : std::numeric_limits<std::uint32_t>::max();
+        const bool ok = *n >= lo && *n <= hi;
         if (!ok) fail(fmt::format("{}: argument {} ({}) is out of range", info.name, index + 1, *n));
         v.i = *n;
         return v;

@@ -1,0 +1,225 @@
+// The .pass format: parse errors name file and line; recording then replaying gives the
+// same bits and counters; floats survive the text round trip exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "pipeline/report.hpp"
+#include "pipeline/trace.hpp"
+#include "test_util.hpp"
+
+using namespace passim;
+
+namespace {
+
+ReplayResult replay(const std::string& text, const ReplayOptions& options = {}) {
+  return replay_trace_text(text, "t.pass", PASSIM_SOURCE_DIR "/traces", options);
+}
+
+// Expects the text to fail at `line` with a message containing `fragment`.
+void expect_error(const std::string& text, int line, const std::string& fragment) {
+  try {
+    replay(text);
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const TraceError& e) {
+    EXPECT_EQ(e.line, line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("t.pass:" + std::to_string(line) + ": ", 0), 0u) << e.what();
+  }
+}
+
+const char* kHeader = "passim-trace 1\n@framebuffer 8x8 color=8 double=no\n";
+
+}  // namespace
+
+TEST(TraceParse, ErrorsNameTheLine) {
+  expect_error("", 1, "first line");
+  expect_error("passim-trace 2\n", 1, "version 2 is not supported");
+  expect_error("glClear(GL_COLOR_BUFFER_BIT)\n", 1, "passim-trace 1");
+  const std::string h = kHeader;  // lines 1-2
+  expect_error(h + "glFrobnicate(1)\n", 3, "unknown call 'glFrobnicate'");
+  expect_error(h + "\n# comment\nglClear(GL_COLOUR_BUFFER_BIT)\n", 5, "unknown enum 'GL_COLOUR_BUFFER_BIT'");
+  expect_error(h + "glClearColor(0, 0, 0)\n", 3, "takes 4 arguments, the trace gives 3");
+  expect_error(h + "glClearColor(0, 0, zero, 1)\n", 3, "'zero' is not a number");
+  expect_error(h + "glViewport(0, 0, 1.5, 4)\n", 3, "not a whole number");
+  expect_error(h + "glViewport(0, 0, 99999999999, 4)\n", 3, "out of range");
+  expect_error(h + "glLoadMatrixf({1, 0, 0})\n", 3, "needs 16 values, the trace gives 3");
+  expect_error(h + "glLightfv(GL_LIGHT0, GL_POSITION, {1, 2})\n", 3, "needs 4 values");
+  expect_error(h + "glClear(GL_COLOR_BUFFER_BIT\n\n", 3, "not closed");
+  expect_error(h + "glClear(GL_COLOR_BUFFER_BIT))\n", 3, "unbalanced");
+  expect_error(h + "glPushGroupMarkerEXT(0, \"open)\n", 3, "unterminated string");
+  expect_error(h + "glClear(GL_COLOR_BUFFER_BIT) extra\n", 3, "unexpected text");
+  expect_error(h + "glVertexPointer(3, GL_FLOAT, 0, file(\"missing.f32\"))\n", 3, "cannot read side file");
+  expect_error(h + "@output a color\n@output a color\n", 4, "already used");
+  expect_error(h + "@output ../evil color\n", 3, "may hold only");
+  expect_error(h + "@frobnicate\n", 3, "unknown directive");
+  expect_error("passim-trace 1\n@framebuffer 5000x10\n", 2, "outside 1..4096");
+  expect_error("passim-trace 1\n@framebuffer 8x8 color=17\n", 2, "colour width 17");
+  expect_error("passim-trace 1\n@framebuffer 8x8 depth=40\n", 2, "depth width 40");
+  expect_error("passim-trace 1\n@profile octane\n", 2, "unknown machine profile 'octane'");
+  expect_error(h + "glClear(GL_COLOR_BUFFER_BIT)\n@framebuffer 4x4\n", 4, "must come before the first GL call");
+  expect_error(h + "glEnableClientState(GL_VERTEX_ARRAY)\nglVertexPointer(2, GL_FLOAT, 0, {0, 0, 1, 0})\n"
+                   "glDrawArrays(GL_TRIANGLES, 0, 3)\n",
+               5, "reads element 2 of the vertex array, but only 16 bytes were given");
+  expect_error(h + "glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, {0, 1})\n", 3, "count is 3 but 2 indices");
+  expect_error(h + "glColor4ub(256, 0, 0, 0)\n", 3, "argument 1 (256) is out of range");
+}
+
+TEST(TraceParse, AcceptsApitraceDumpShapes) {
+  // Leading call numbers, "name = value" arguments, recorded return values, hex floats.
+  const std::string text = std::string(kHeader) +
+                           "12 glClearColor(red = 0x1p-1, green = 0.25, blue = 0, alpha = 1)\n"
+                           "13 glClear(mask = GL_COLOR_BUFFER_BIT)\n"
+                           "14 glGetError() = GL_NO_ERROR\n"
+                           "@output c color GL_FRONT\n";
+  ReplayResult r = replay(text);
+  EXPECT_EQ(test::pixel(*r.context, 3, 3), (std::array<std::uint32_t, 4>{128, 64, 0, 255}));
+}
+
+TEST(TraceParse, GlErrorsAreReportedNotFatalUnlessStrict) {
+  const std::string text = std::string(kHeader) + "glEnable(GL_TRIANGLES)\nglClear(GL_COLOR_BUFFER_BIT)\n";
+  std::ostringstream diag;
+  ReplayOptions opt;
+  opt.diagnostics = &diag;
+  ReplayResult r = replay(text, opt);
+  EXPECT_EQ(r.context->error_log().size(), 1u);
+  EXPECT_NE(diag.str().find("t.pass:3: GL_INVALID_ENUM raised by glEnable"), std::string::npos) << diag.str();
+  opt.strict = true;
+  opt.diagnostics = nullptr;
+  try {
+    replay(text, opt);
+    ADD_FAILURE() << "strict replay did not fail";
+  } catch (const TraceError& e) {
+    EXPECT_EQ(e.line, 3);
+  }
+}
+
+TEST(TraceFormat, FloatsRoundTripExactly) {
+  // Awkward floats (shortest round-trip text) survive writing and parsing bit for bit.
+  const float values[] = {0.1f, 1.0f / 3.0f, 16777217.0f, 1e-38f, 3.4028235e38f, -0.0f, 1.17549435e-38f,
+                          std::nextafter(1.0f, 2.0f)};
+  Context ctx(test::small_config(4, 4));
+  std::ostringstream out;
+  TraceWriter w(out);
+  TraceSettings s;
+  s.framebuffer = ctx.config();
+  w.write_header(s);
+  ctx.set_call_sink(&w);
+  for (float v : values) ctx.glClearColor(v, v, v, v);
+  std::istringstream in(out.str());
+  std::string line;
+  std::size_t k = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("glClearColor(", 0) != 0) continue;
+    const std::string first = line.substr(13, line.find(',') - 13);
+    float parsed = std::strtof(first.c_str(), nullptr);
+    ASSERT_LT(k, std::size(values));
+    EXPECT_EQ(std::memcmp(&parsed, &values[k], 4), 0) << line;
+    ++k;
+  }
+  EXPECT_EQ(k, std::size(values));
+}
+
+namespace {
+// A program that uses the spine's features, for the record -> replay identity.
+void program(Context& c) {
+  const float verts[] = {1, 1, 0, 30, 2, 0, 16, 28, 0, 4, 20, 0.5f};
+  const float colors[] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 0};
+  c.glPushGroupMarkerEXT(0, "setup");
+  c.glMatrixMode(GL_PROJECTION);
+  c.glLoadIdentity();
+  c.glOrtho(0, 32, 0, 32, -1, 1);
+  c.glMatrixMode(GL_MODELVIEW);
+  c.glLoadIdentity();
+  c.glClearColor(0.2f, 0.1f, 0.3f, 1);
+  c.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  c.glPopGroupMarkerEXT();
+  c.glPushGroupMarkerEXT(0, "arrays");
+  c.glEnable(GL_DEPTH_TEST);
+  c.glEnableClientState(GL_VERTEX_ARRAY);
+  c.glEnableClientState(GL_COLOR_ARRAY);
+  c.glVertexPointer(3, GL_FLOAT, 0, verts);
+  c.glColorPointer(3, GL_FLOAT, 0, colors);
+  c.glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
+  const GLuint idx[] = {0, 2, 3};
+  c.glNewList(7, GL_COMPILE);
+  c.glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_INT, idx);
+  c.glEndList();
+  c.glDisableClientState(GL_COLOR_ARRAY);
+  c.glPopGroupMarkerEXT();
+  c.glPushGroupMarkerEXT(0, "lit list");
+  c.glEnable(GL_LIGHTING);
+  c.glEnable(GL_LIGHT0);
+  c.glTranslatef(0.5f, 0.25f, 0);
+  c.glDepthFunc(GL_LEQUAL);
+  c.glCallList(7);
+  c.glEnable(GL_BLEND);
+  c.glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  c.glDisable(GL_LIGHTING);
+  c.glColor4f(1, 1, 1, 0.3f);
+  c.glRotatef(10, 0, 0, 1);
+  c.glBegin(GL_QUAD_STRIP);
+  for (int k = 0; k < 5; ++k) {
+    c.glVertex3f(4.0f + 5.5f * k, 10, -0.25f);
+    c.glVertex3f(4.0f + 5.5f * k, 22, -0.25f);
+  }
+  c.glEnd();
+  c.glEnable(GL_POLYGON_OFFSET_FILL);
+  c.glPolygonOffset(1.5f, 2);
+  c.glBegin(GL_POLYGON);
+  c.glVertex2f(3, 3);
+  c.glVertex2f(12, 4);
+  c.glVertex2f(14, 11);
+  c.glVertex2f(6, 13);
+  c.glVertex2f(2, 8);
+  c.glEnd();
+  c.glPopGroupMarkerEXT();
+}
+}  // namespace
+
+TEST(TraceRecord, RecordedProgramReplaysToIdenticalBitsAndCounters) {
+  for (int bits : {8, 12}) {
+    FramebufferConfig cfg = test::small_config(32, 32, bits);
+    Context original(cfg);
+    std::ostringstream text;
+    TraceWriter writer(text);
+    TraceSettings settings;
+    settings.framebuffer = cfg;
+    writer.write_header(settings);
+    original.set_call_sink(&writer);
+    program(original);
+    writer.output("final", "color", "GL_FRONT");
+
+    ReplayResult r = replay(text.str());
+    EXPECT_EQ(r.context->framebuffer().color[0].rgba, original.framebuffer().color[0].rgba) << text.str();
+    EXPECT_EQ(r.context->framebuffer().depth, original.framebuffer().depth);
+    ASSERT_EQ(r.context->passes().size(), original.passes().size());
+    for (std::size_t k = 0; k < original.passes().size(); ++k) {
+      EXPECT_EQ(r.context->passes()[k].label, original.passes()[k].label);
+      EXPECT_TRUE(r.context->passes()[k].counters == original.passes()[k].counters) << original.passes()[k].label;
+    }
+    // Recording the replay again gives the same text: the format is canonical.
+    std::ostringstream again;
+    TraceWriter writer2(again);
+    ReplayOptions opt;
+    opt.record = &writer2;
+    replay(text.str(), opt);
+    EXPECT_EQ(again.str(), text.str());
+  }
+}
+
+TEST(TraceRecord, ExampleTracesReRecordToTheSameBits) {
+  for (const char* name : {"masked-multipass.pass", "lit-scene.pass"}) {
+    const std::filesystem::path path = std::filesystem::path(PASSIM_SOURCE_DIR) / "traces" / name;
+    std::ostringstream text;
+    TraceWriter writer(text);
+    ReplayOptions opt;
+    opt.record = &writer;
+    ReplayResult first = replay_trace(path, opt);
+    ReplayResult second = replay_trace_text(text.str(), "rerecorded.pass", path.parent_path());
+    ASSERT_EQ(first.images.size(), second.images.size()) << name;
+    for (std::size_t k = 0; k < first.images.size(); ++k) EXPECT_EQ(first.images[k].hash, second.images[k].hash) << name;
+    EXPECT_TRUE(first.context->total_counters() == second.context->total_counters()) << name;
+  }
+}
