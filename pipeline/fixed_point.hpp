@@ -24,7 +24,8 @@ inline double round_half_up(double x) { return std::floor(x + 0.5); }
 // §2.13.9: k = round(clamp(c, 0, 1) * (2^bits - 1)).
 inline std::uint32_t float_to_fixed(double c, int bits) {
   const double m = static_cast<double>(max_code(bits));
-  return static_cast<std::uint32_t>(round_half_up(clamp_nan_low(c, 0.0, 1.0) * m));
+  // The argument is >= 0.5, so truncation is floor(x + 0.5) exactly, without a libm call.
+  return static_cast<std::uint32_t>(clamp_nan_low(c, 0.0, 1.0) * m + 0.5);
 }
 
 // §2.13.9: c = k / (2^bits - 1); 0 and 1 are exact. A 0-bit channel reads as 1 (absent alpha).

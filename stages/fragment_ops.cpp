@@ -1,6 +1,7 @@
 #include "stages/fragment_ops.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -88,6 +89,96 @@ std::uint32_t stencil_apply(GLenum op, std::uint32_t value, std::uint32_t ref, s
   }
 }
 
+
+// Depth test without stencil, one loop per comparison function so the compare is inlined.
+template <class Cmp>
+std::uint64_t depth_loop(Cmp cmp, bool write, const FragmentSpan& span, int begin, int end, std::uint32_t* stored) {
+  std::uint64_t killed = 0;
+  for (int i = begin; i < end; ++i) {
+    if (!span.live[i]) continue;
+    const std::uint32_t z = span.depth[i];
+    if (cmp(z, stored[i])) {
+      if (write) stored[i] = z;
+    } else {
+      span.live[i] = 0;
+      ++killed;
+    }
+  }
+  return killed;
+}
+
+}  // namespace
+
+std::uint64_t FragmentOps::depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
+                                      std::uint32_t* stored, Counters& counters) {
+  std::uint64_t tested = 0;
+  for (int i = begin; i < end; ++i) tested += span.live[i];
+  std::uint64_t killed = 0;
+  switch (func) {
+    case GL_NEVER: killed = depth_loop([](std::uint32_t, std::uint32_t) { return false; }, write, span, begin, end, stored); break;
+    case GL_LESS: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a < b; }, write, span, begin, end, stored); break;
+    case GL_EQUAL: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a == b; }, write, span, begin, end, stored); break;
+    case GL_LEQUAL: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a <= b; }, write, span, begin, end, stored); break;
+    case GL_GREATER: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a > b; }, write, span, begin, end, stored); break;
+    case GL_NOTEQUAL: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a != b; }, write, span, begin, end, stored); break;
+    case GL_GEQUAL: killed = depth_loop([](std::uint32_t a, std::uint32_t b) { return a >= b; }, write, span, begin, end, stored); break;
+    default: killed = depth_loop([](std::uint32_t, std::uint32_t) { return true; }, write, span, begin, end, stored); break;
+  }
+  const std::uint64_t bits = static_cast<std::uint64_t>(fb_.config.depth_bits);
+  counters.depth_bits_read += tested * bits;
+  if (write) counters.depth_bits_written += (tested - killed) * bits;
+  counters.killed_depth += killed;
+  return killed;
+}
+
+std::uint64_t FragmentOps::stencil_and_depth(const FragmentOpsState& ops, const FramebufferControlState& ctl,
+                                             const FragmentSpan& span, int begin, int end, std::size_t row_base,
+                                             bool depth_on, Counters& counters) {
+  const FramebufferConfig& cfg = fb_.config;
+  const std::uint32_t smax = max_code(cfg.stencil_bits);
+  const std::uint32_t sref = static_cast<std::uint32_t>(std::clamp<std::int64_t>(ops.stencil_ref, 0, smax));
+  const std::uint32_t smask = ops.stencil_value_mask & smax;
+  const std::uint32_t swrite = ctl.stencil_writemask & smax;
+  std::uint64_t killed = 0;
+  auto update = [&](std::size_t p, std::uint32_t stencil, GLenum op) {
+    const std::uint32_t s = stencil_apply(op, stencil, sref, smax);
+    if (s != stencil && swrite) {
+      fb_.stencil[p] = static_cast<std::uint8_t>((stencil & ~swrite) | (s & swrite));
+      counters.stencil_bits_written += static_cast<std::uint64_t>(cfg.stencil_bits);
+    }
+  };
+  for (int i = begin; i < end; ++i) {
+    if (!span.live[i]) continue;
+    const std::size_t p = row_base + static_cast<std::size_t>(i);
+    const std::uint32_t stencil = fb_.stencil[p];
+    counters.stencil_bits_read += static_cast<std::uint64_t>(cfg.stencil_bits);
+    if (!compare(ops.stencil_func, sref & smask, stencil & smask)) {
+      span.live[i] = 0;
+      ++counters.killed_stencil;
+      ++killed;
+      update(p, stencil, ops.stencil_fail);
+      continue;
+    }
+    bool depth_pass = true;
+    if (depth_on) {
+      counters.depth_bits_read += static_cast<std::uint64_t>(cfg.depth_bits);
+      depth_pass = compare(ops.depth_func, span.depth[i], fb_.depth[p]);
+      if (depth_pass && ctl.depth_mask) {
+        fb_.depth[p] = span.depth[i];
+        counters.depth_bits_written += static_cast<std::uint64_t>(cfg.depth_bits);
+      }
+    }
+    update(p, stencil, depth_pass ? ops.stencil_depth_pass : ops.stencil_depth_fail);
+    if (!depth_pass) {
+      span.live[i] = 0;
+      ++counters.killed_depth;
+      ++killed;
+    }
+  }
+  return killed;
+}
+
+namespace {
 }  // namespace
 
 void FragmentOps::process(FragmentSpan& span) {
@@ -130,51 +221,10 @@ void FragmentOps::process(FragmentSpan& span) {
   const bool has_stencil = cfg.stencil_bits > 0;
   const bool stencil_on = ops.stencil_test && has_stencil;
   const bool depth_on = ops.depth_test && cfg.depth_bits > 0;
-  const std::uint32_t smax = max_code(cfg.stencil_bits);
-  const std::uint32_t sref = static_cast<std::uint32_t>(std::clamp<std::int64_t>(ops.stencil_ref, 0, smax));
-  const std::uint32_t smask = ops.stencil_value_mask & smax;
-  const std::uint32_t swrite = ctl.stencil_writemask & smax;
-  for (int i = begin; i < end && (stencil_on || depth_on); ++i) {
-    if (!live[i]) continue;
-    const std::size_t p = row_base + static_cast<std::size_t>(i);
-    std::uint32_t stencil = 0;
-    if (stencil_on) {
-      stencil = fb_.stencil[p];
-      counters.stencil_bits_read += static_cast<std::uint64_t>(cfg.stencil_bits);
-      if (!compare(ops.stencil_func, sref & smask, stencil & smask)) {
-        live[i] = 0;
-        ++counters.killed_stencil;
-        --alive;
-        const std::uint32_t s = stencil_apply(ops.stencil_fail, stencil, sref, smax);
-        if (s != stencil && swrite) {
-          fb_.stencil[p] = static_cast<std::uint8_t>((stencil & ~swrite) | (s & swrite));
-          counters.stencil_bits_written += static_cast<std::uint64_t>(cfg.stencil_bits);
-        }
-        continue;
-      }
-    }
-    bool depth_pass = true;
-    if (depth_on) {
-      counters.depth_bits_read += static_cast<std::uint64_t>(cfg.depth_bits);
-      depth_pass = compare(ops.depth_func, span.depth[i], fb_.depth[p]);
-      if (depth_pass && ctl.depth_mask) {
-        fb_.depth[p] = span.depth[i];
-        counters.depth_bits_written += static_cast<std::uint64_t>(cfg.depth_bits);
-      }
-    }
-    if (stencil_on) {
-      const std::uint32_t s =
-          stencil_apply(depth_pass ? ops.stencil_depth_pass : ops.stencil_depth_fail, stencil, sref, smax);
-      if (s != stencil && swrite) {
-        fb_.stencil[p] = static_cast<std::uint8_t>((stencil & ~swrite) | (s & swrite));
-        counters.stencil_bits_written += static_cast<std::uint64_t>(cfg.stencil_bits);
-      }
-    }
-    if (!depth_pass) {
-      live[i] = 0;
-      ++counters.killed_depth;
-      --alive;
-    }
+  if (depth_on && !stencil_on) {
+    alive -= depth_only(ops.depth_func, ctl.depth_mask, span, begin, end, fb_.depth.data() + row_base, counters);
+  } else if (stencil_on) {
+    alive -= stencil_and_depth(ops, ctl, span, begin, end, row_base, depth_on, counters);
   }
   counters.fragments_written += alive;
   if (alive == 0) return;
@@ -187,8 +237,26 @@ void FragmentOps::process(FragmentSpan& span) {
   for (int k = 0; k < 4; ++k)
     if (ctl.color_mask[k]) mask_bits += cfg.color_bits[k];
   int total_bits = cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3];
+  const bool same_widths = fragment_bits == cfg.color_bits;
   for (ColorBufferId id : *in_.draw_buffers) {
     std::uint16_t* dst = fb_.color[static_cast<int>(id)].rgba.data() + 4 * row_base;
+    counters.color_bits_written += alive * static_cast<std::uint64_t>(mask_bits);
+    if (!blend_on && !logic_on && same_widths) {
+      // Replace: the fragment's codes go straight through the colour mask.
+      const bool all = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
+      for (int i = begin; i < end; ++i) {
+        if (!live[i]) continue;
+        std::uint16_t* d = dst + 4 * i;
+        const std::uint16_t* src = span.rgba + 4 * i;
+        if (all) {
+          std::memcpy(d, src, 4 * sizeof(std::uint16_t));
+        } else {
+          for (int k = 0; k < 4; ++k)
+            if (ctl.color_mask[k]) d[k] = src[k];
+        }
+      }
+      continue;
+    }
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
@@ -217,7 +285,6 @@ void FragmentOps::process(FragmentSpan& span) {
       }
       for (int k = 0; k < 4; ++k)
         if (ctl.color_mask[k] && cfg.color_bits[k] > 0) d[k] = static_cast<std::uint16_t>(out[k]);
-      counters.color_bits_written += static_cast<std::uint64_t>(mask_bits);
     }
   }
 }
