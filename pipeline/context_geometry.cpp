@@ -442,7 +442,8 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   if (cut) ++c.primitives_clipped;
 
   // Window coordinates, then facing from the signed area (§3.5.1, eq. 3.6).
-  std::vector<RasterVertex> win(poly.size());
+  std::vector<RasterVertex>& win = scratch_->window;
+  win.resize(poly.size());
   for (std::size_t k = 0; k < poly.size(); ++k) win[k] = to_window(poly[k], 0);
   double area = 0.0;
   for (std::size_t k = 0; k < win.size(); ++k) {

@@ -14,6 +14,7 @@ struct Context::Scratch {
   SpanBuffers spans;
   FragmentOps fragment_ops;
   std::vector<ProcessedVertex> polygon, clip_scratch;
+  std::vector<RasterVertex> window;
 };
 
 }  // namespace passim

@@ -1,6 +1,7 @@
 #include "stages/clear.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -37,12 +38,21 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
       code[k] = static_cast<std::uint16_t>(float_to_fixed(ctl.clear_color[k], cfg.color_bits[k]));
       if (ctl.color_mask[k]) bits += cfg.color_bits[k];
     }
+    const bool all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
     for (ColorBufferId id : draw_buffers) {
       std::uint16_t* rgba = fb.color[static_cast<int>(id)].rgba.data();
-      for_each_pixel([&](std::size_t p) {
-        for (int k = 0; k < 4; ++k)
-          if (ctl.color_mask[k] && cfg.color_bits[k] > 0) rgba[4 * p + k] = code[k];
-      });
+      if (all_channels) {
+        // Whole pixels: fill each row of the region with the clear pattern.
+        for (int y = y0; y < y1; ++y) {
+          std::uint16_t* row = rgba + 4 * fb.pixel_index(x0, y);
+          for (int x = 0; x < x1 - x0; ++x) std::memcpy(row + 4 * x, code, sizeof(code));
+        }
+      } else {
+        for_each_pixel([&](std::size_t p) {
+          for (int k = 0; k < 4; ++k)
+            if (ctl.color_mask[k] && cfg.color_bits[k] > 0) rgba[4 * p + k] = code[k];
+        });
+      }
       counters.clear_pixels += pixels;
       counters.color_bits_written += pixels * static_cast<std::uint64_t>(bits);
     }

@@ -117,7 +117,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   }
 
   // Colour: constant (flat shading, or three equal quantised colours) or perspective-correct
-  // (eq. 3.4: planes of c/w and 1/w, divided per fragment).
+  // (eq. 3.4: planes of c/w and 1/w; per fragment c = (c/w plane) · (1 / (1/w plane))).
   std::uint16_t constant_codes[4];
   bool constant = options.flat || (v[0]->color == v[1]->color && v[1]->color == v[2]->color);
   if (constant) constant_color_codes(options.flat ? options.flat_color : v[0]->color, target, constant_codes);
@@ -165,9 +165,9 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       for (int k = 0; k < 4; ++k) c_row[k] = c_plane[k].at_row(cy, setup.y0);
       for (int i = 0; i < n; ++i) {
         const double dx = static_cast<double>(x0 + i) + 0.5 - setup.x0;
-        const double q = q_row + q_plane.dfdx * dx;
+        const double inv_q = 1.0 / (q_row + q_plane.dfdx * dx);
         for (int k = 0; k < 4; ++k) {
-          const double value = (c_row[k] + c_plane[k].dfdx * dx) / q;
+          const double value = (c_row[k] + c_plane[k].dfdx * dx) * inv_q;
           span.rgba[4 * i + k] = static_cast<std::uint16_t>(float_to_fixed(value, target.color_bits[k]));
         }
       }
