@@ -41,6 +41,15 @@ bool point_inside(const ProcessedVertex& v, const ClipPlanes& planes) {
 bool clip_polygon(std::vector<ProcessedVertex>& poly, std::vector<ProcessedVertex>& scratch,
                   const ClipPlanes& planes, bool& cut) {
   cut = false;
+  // Trivial accept: every vertex inside the view volume and no user plane enabled.
+  if (planes.user_enabled == 0) {
+    bool inside = true;
+    for (const auto& v : poly) {
+      const Vec4& c = v.clip;
+      inside = inside && -c.w <= c.x && c.x <= c.w && -c.w <= c.y && c.y <= c.w && -c.w <= c.z && c.z <= c.w;
+    }
+    if (inside) return poly.size() >= 3;
+  }
   for (int k = 0; k < 12 && !poly.empty(); ++k) {
     if (!plane_active(k, planes)) continue;
     bool all_inside = true;

@@ -110,9 +110,13 @@ std::uint64_t depth_loop(Cmp cmp, bool write, const FragmentSpan& span, int begi
 }  // namespace
 
 std::uint64_t FragmentOps::depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
-                                      std::uint32_t* stored, Counters& counters) {
-  std::uint64_t tested = 0;
-  for (int i = begin; i < end; ++i) tested += span.live[i];
+                                      std::uint32_t* stored, std::int64_t tested_hint, Counters& counters) {
+  std::uint64_t tested = static_cast<std::uint64_t>(end - begin);
+  if (tested_hint >= 0) tested = static_cast<std::uint64_t>(tested_hint);
+  else {
+    tested = 0;
+    for (int i = begin; i < end; ++i) tested += span.live[i];
+  }
   std::uint64_t killed = 0;
   switch (func) {
     case GL_NEVER: killed = depth_loop([](std::uint32_t, std::uint32_t) { return false; }, write, span, begin, end, stored); break;
@@ -222,7 +226,8 @@ void FragmentOps::process(FragmentSpan& span) {
   const bool stencil_on = ops.stencil_test && has_stencil;
   const bool depth_on = ops.depth_test && cfg.depth_bits > 0;
   if (depth_on && !stencil_on) {
-    alive -= depth_only(ops.depth_func, ctl.depth_mask, span, begin, end, fb_.depth.data() + row_base, counters);
+    alive -= depth_only(ops.depth_func, ctl.depth_mask, span, begin, end, fb_.depth.data() + row_base,
+                        static_cast<std::int64_t>(alive), counters);
   } else if (stencil_on) {
     alive -= stencil_and_depth(ops, ctl, span, begin, end, row_base, depth_on, counters);
   }

@@ -29,7 +29,7 @@ class FragmentOps final : public FragmentSink {
  private:
   // Return the number of fragments they kill.
   std::uint64_t depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
-                           std::uint32_t* stored, Counters& counters);
+                           std::uint32_t* stored, std::int64_t tested_hint, Counters& counters);
   std::uint64_t stencil_and_depth(const FragmentOpsState& ops, const FramebufferControlState& ctl,
                                   const FragmentSpan& span, int begin, int end, std::size_t row_base, bool depth_on,
                                   Counters& counters);
