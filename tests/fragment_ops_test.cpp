@@ -1,0 +1,209 @@
+// Per-fragment operations (§4.1) with hand-computed values at 8 and 12 bits.
+#include <gtest/gtest.h>
+
+#include "test_util.hpp"
+
+using namespace passim;
+using passim::test::pixel;
+
+namespace {
+void full_quad(Context& c) {
+  const auto& cfg = c.config();
+  c.glBegin(GL_QUADS);
+  c.glVertex2f(0, 0);
+  c.glVertex2f(static_cast<float>(cfg.width), 0);
+  c.glVertex2f(static_cast<float>(cfg.width), static_cast<float>(cfg.height));
+  c.glVertex2f(0, static_cast<float>(cfg.height));
+  c.glEnd();
+}
+}  // namespace
+
+TEST(Blend, ReverseSubtractClampsAtZero) {
+  for (int bits : {8, 12}) {
+    Context ctx(test::small_config(2, 2, bits));
+    test::window_projection(ctx);
+    ctx.glClearColor(0.5f, 0.25f, 1.0f, 1.0f);
+    ctx.glClear(GL_COLOR_BUFFER_BIT);
+    ctx.glEnable(GL_BLEND);
+    ctx.glBlendFunc(GL_ONE, GL_ONE);
+    ctx.glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
+    ctx.glColor4f(0.75f, 0.125f, 0.5f, 0.0f);
+    full_quad(ctx);
+    // d - s with d, s the fixed-point values: bits 8: d = (128, 64, 255)/255, s = (191, 32, 128)/255
+    // (0.75·255 = 191.25, 0.125·255 = 31.875, 0.5·255 = 127.5 -> 128):
+    // R 128-191 < 0 -> 0; G 64-32 = 32; B 255-128 = 127; A 255-0 = 255.
+    // bits 12: d = (2048, 1024, 4095), s = (3071, 512, 2048): R 0, G 512, B 2047, A 4095.
+    const auto p = pixel(ctx, 0, 0);
+    if (bits == 8) {
+      EXPECT_EQ(p, (std::array<std::uint32_t, 4>{0, 32, 127, 255}));
+    } else {
+      EXPECT_EQ(p, (std::array<std::uint32_t, 4>{0, 512, 2047, 4095}));
+    }
+  }
+}
+
+TEST(Blend, MinMaxIgnoreFactors) {
+  Context ctx(test::small_config(2, 2, 8));
+  test::window_projection(ctx);
+  ctx.glClearColor(0.2f, 0.8f, 0.4f, 0.6f);  // codes 51, 204, 102, 153
+  ctx.glClear(GL_COLOR_BUFFER_BIT);
+  ctx.glEnable(GL_BLEND);
+  ctx.glBlendFunc(GL_ZERO, GL_ZERO);  // would give 0 if the factors applied
+  ctx.glBlendEquation(GL_MAX);
+  ctx.glColor4f(0.6f, 0.2f, 0.4f, 1.0f);  // codes 153, 51, 102, 255
+  full_quad(ctx);
+  EXPECT_EQ(pixel(ctx, 1, 1), (std::array<std::uint32_t, 4>{153, 204, 102, 255}));
+  ctx.glBlendEquation(GL_MIN);
+  ctx.glColor4f(0.0f, 1.0f, 0.2f, 0.0f);  // 0, 255, 51, 0
+  full_quad(ctx);
+  EXPECT_EQ(pixel(ctx, 1, 1), (std::array<std::uint32_t, 4>{0, 204, 51, 0}));
+}
+
+TEST(Blend, ConstantColourAndAlphaFactors) {
+  // s·Ac + d·(1 - Ac) with Ac = 0.25 (imaging subset's CONSTANT_ALPHA), 8 bits:
+  // s = 255/255, d = 0 -> 0.25·255 = 63.75 -> 64.
+  Context ctx(test::small_config(2, 2, 8));
+  test::window_projection(ctx);
+  ctx.glClear(GL_COLOR_BUFFER_BIT);
+  ctx.glEnable(GL_BLEND);
+  ctx.glBlendColor(0, 0, 0, 0.25f);
+  ctx.glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+  ctx.glColor4f(1, 1, 1, 1);
+  full_quad(ctx);
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 64u);
+  // Again: d = 64/255: 0.25 + 0.75·64/255 = 0.43824 -> 111.75 -> 112.
+  full_quad(ctx);
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 112u);
+}
+
+TEST(ColorMask, EveryChannelCombination) {
+  for (int mask = 0; mask < 16; ++mask) {
+    Context ctx(test::small_config(1, 1, 12));
+    test::window_projection(ctx);
+    ctx.glClearColor(0, 0, 0, 0);
+    ctx.glClear(GL_COLOR_BUFFER_BIT);
+    const std::uint64_t cleared = ctx.total_counters().color_bits_written;  // 4 x 12
+    ctx.glColorMask(mask & 1, (mask >> 1) & 1, (mask >> 2) & 1, (mask >> 3) & 1);
+    ctx.glColor4f(1, 1, 1, 1);
+    full_quad(ctx);
+    const auto p = pixel(ctx, 0, 0);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(p[k], ((mask >> k) & 1) ? 4095u : 0u) << "mask " << mask;
+    EXPECT_EQ(cleared, 48u);
+    EXPECT_EQ(ctx.total_counters().color_bits_written - cleared,
+              static_cast<std::uint64_t>(12 * __builtin_popcount(static_cast<unsigned>(mask))));
+  }
+}
+
+TEST(Dither, IsANoOpUnderTheDefaultArithmetic) {
+  // A3: colours are quantised once (rounded), so DITHER on or off gives the same bits.
+  Context on(test::small_config(8, 8, 8)), off(test::small_config(8, 8, 8));
+  off.glDisable(GL_DITHER);
+  for (Context* c : {&on, &off}) {
+    test::window_projection(*c);
+    c->glBegin(GL_TRIANGLES);
+    c->glColor3f(0.1f, 0.7f, 0.33f);
+    c->glVertex2f(0, 0);
+    c->glColor3f(0.9f, 0.2f, 0.5f);
+    c->glVertex2f(8, 0);
+    c->glColor3f(0.4f, 0.4f, 0.9f);
+    c->glVertex2f(0, 8);
+    c->glEnd();
+  }
+  EXPECT_EQ(on.framebuffer().color[0].rgba, off.framebuffer().color[0].rgba);
+}
+
+TEST(AlphaWidth, FewerThanTwoAlphaBitsCarryAlphaAtRgbPrecision) {
+  // A26: framebuffer alpha 0 bits; fragment alpha kept at 8 bits for the alpha test,
+  // destination alpha reads as 1.
+  FramebufferConfig cfg = test::small_config(2, 1, 8);
+  cfg.color_bits[3] = 0;
+  Context ctx(cfg);
+  test::window_projection(ctx);
+  ctx.glEnable(GL_ALPHA_TEST);
+  ctx.glAlphaFunc(GL_GREATER, 0.5f);  // ref code 128
+  ctx.glBegin(GL_QUADS);
+  ctx.glColor4f(1, 1, 1, 129.0f / 255.0f);  // passes: 129 > 128
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(1, 0);
+  ctx.glVertex2f(1, 1);
+  ctx.glVertex2f(0, 1);
+  ctx.glColor4f(1, 1, 1, 128.0f / 255.0f);  // fails: 128 > 128 is false
+  ctx.glVertex2f(1, 0);
+  ctx.glVertex2f(2, 0);
+  ctx.glVertex2f(2, 1);
+  ctx.glVertex2f(1, 1);
+  ctx.glEnd();
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 255u);
+  EXPECT_EQ(pixel(ctx, 1, 0)[0], 0u);
+  EXPECT_EQ(ctx.total_counters().killed_alpha, 1u);
+  // DST_ALPHA with no alpha plane is 1: ONE·0 + d·... -> source·Ad = source.
+  ctx.glDisable(GL_ALPHA_TEST);
+  ctx.glEnable(GL_BLEND);
+  ctx.glBlendFunc(GL_DST_ALPHA, GL_ZERO);
+  ctx.glColor4f(0.5f, 0.5f, 0.5f, 0.0f);
+  ctx.glBegin(GL_QUADS);
+  ctx.glVertex2f(1, 0);
+  ctx.glVertex2f(2, 0);
+  ctx.glVertex2f(2, 1);
+  ctx.glVertex2f(1, 1);
+  ctx.glEnd();
+  EXPECT_EQ(pixel(ctx, 1, 0)[0], 128u);
+}
+
+TEST(Stencil, OperationsSaturateAndMasksApply) {
+  Context ctx(test::small_config(1, 1, 8));
+  test::window_projection(ctx);
+  ctx.glClearStencil(254);
+  ctx.glClear(GL_STENCIL_BUFFER_BIT);
+  ctx.glEnable(GL_STENCIL_TEST);
+  ctx.glStencilFunc(GL_ALWAYS, 0, 0xFF);
+  ctx.glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+  for (int k = 0; k < 3; ++k) full_quad(ctx);  // 254 -> 255 -> 255 -> 255 (saturates, GL 1.2)
+  EXPECT_EQ(ctx.framebuffer().stencil[0], 255u);
+  ctx.glStencilMask(0x0F);
+  ctx.glStencilOp(GL_KEEP, GL_KEEP, GL_ZERO);
+  full_quad(ctx);  // only the low 4 bits are written: 0xF0
+  EXPECT_EQ(ctx.framebuffer().stencil[0], 0xF0u);
+  ctx.glStencilFunc(GL_EQUAL, 0x30, 0x30);  // (0x30 & 0x30) == (0xF0 & 0x30): passes
+  ctx.glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  full_quad(ctx);
+  ctx.glStencilFunc(GL_LESS, 0xF0, 0xFF);  // 0xF0 < 0xF0 false: killed
+  full_quad(ctx);
+  EXPECT_EQ(ctx.total_counters().killed_stencil, 1u);
+}
+
+TEST(LogicOp, XorOnCodes) {
+  Context ctx(test::small_config(1, 1, 12));
+  test::window_projection(ctx);
+  ctx.glClearColor(1, 0, 1, 0);  // 4095, 0, 4095, 0
+  ctx.glClear(GL_COLOR_BUFFER_BIT);
+  ctx.glEnable(GL_COLOR_LOGIC_OP);
+  ctx.glLogicOp(GL_XOR);
+  ctx.glColor4f(0.5f, 0.5f, 0, 1);  // 2048, 2048, 0, 4095
+  full_quad(ctx);
+  EXPECT_EQ(pixel(ctx, 0, 0), (std::array<std::uint32_t, 4>{4095u ^ 2048u, 2048, 4095, 4095}));
+}
+
+TEST(FlatShading, ProvokingVertexIsLastForTrianglesFirstForPolygons) {
+  Context ctx(test::small_config(4, 4, 8));
+  test::window_projection(ctx);
+  ctx.glShadeModel(GL_FLAT);
+  ctx.glBegin(GL_TRIANGLES);
+  ctx.glColor3f(1, 0, 0);
+  ctx.glVertex2f(0, 0);
+  ctx.glColor3f(0, 1, 0);
+  ctx.glVertex2f(4, 0);
+  ctx.glColor3f(0, 0, 1);
+  ctx.glVertex2f(0, 4);
+  ctx.glEnd();
+  EXPECT_EQ(pixel(ctx, 0, 0), (std::array<std::uint32_t, 4>{0, 0, 255, 255}));
+  ctx.glBegin(GL_POLYGON);
+  ctx.glColor3f(1, 0, 0);
+  ctx.glVertex2f(0, 0);
+  ctx.glColor3f(0, 1, 0);
+  ctx.glVertex2f(4, 0);
+  ctx.glColor3f(0, 0, 1);
+  ctx.glVertex2f(4, 4);
+  ctx.glEnd();
+  EXPECT_EQ(pixel(ctx, 3, 0), (std::array<std::uint32_t, 4>{255, 0, 0, 255}));
+}
