@@ -260,3 +260,39 @@ TEST(Culling, BackFacesCulledAndCounted) {
   // right/top edge, so they are out: x + y <= 6 gives 7+6+...+1 = 28.
   EXPECT_EQ(ctx.total_counters().fragments_generated, 28u);
 }
+
+TEST(BadInput, NaNAndInfiniteVerticesDropTheirPrimitive) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  ctx.glBegin(GL_TRIANGLES);
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(std::nanf(""), 0);
+  ctx.glVertex2f(0, 8);
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(INFINITY, 0);
+  ctx.glVertex2f(0, 8);
+  ctx.glEnd();
+  ctx.glBegin(GL_POINTS);
+  ctx.glVertex4f(1, 1, 0, std::nanf(""));
+  ctx.glEnd();
+  const Counters t = ctx.total_counters();
+  EXPECT_EQ(t.primitives_in, 3u);
+  EXPECT_EQ(t.primitives_clipped_out, 3u);
+  EXPECT_EQ(t.fragments_generated, 0u);
+  EXPECT_FALSE(ctx.warnings().empty());
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST(BadInput, HugeViewportIsClampedAndFarAwayGeometryIsHarmless) {
+  Context ctx(test::small_config(8, 8));
+  ctx.glViewport(-2000000000, -2000000000, 1 << 30, 1 << 30);  // clamped to 4096 x 4096
+  GLint vp[4];
+  ctx.glGetIntegerv(GL_VIEWPORT, vp);
+  EXPECT_EQ(vp[2], 4096);
+  ctx.glBegin(GL_TRIANGLES);
+  ctx.glVertex2f(-1, -1);
+  ctx.glVertex2f(1, -1);
+  ctx.glVertex2f(-1, 1);
+  ctx.glEnd();
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 0u);
+}
