@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "pipeline/fixed_point.hpp"
+#include "stages/span_kernels.hpp"
 
 namespace passim {
 namespace {
@@ -129,6 +131,9 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       c_plane[k] = setup.plane(v[0]->color[k] * q0, v[1]->color[k] * q1, v[2]->color[k] * q2);
   }
 
+  const double depth_scale = static_cast<double>(max_code(target.depth_bits));
+  double color_scale[4];
+  for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
   for (std::int64_t row = row_lo; row <= row_hi; ++row) {
     const std::int64_t py = (2 * row + 1) * S;
     std::int64_t lo = col_lo, hi = col_hi;
@@ -151,26 +156,18 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
     counters.fragments_generated += static_cast<std::uint64_t>(n);
 
     const double cy = static_cast<double>(row) + 0.5;
-    const double z_row = z_plane.at_row(cy, setup.y0);
-    for (int i = 0; i < n; ++i) {
-      const double cx = static_cast<double>(x0 + i) + 0.5;
-      span.depth[i] = depth_code((z_row + z_plane.dfdx * (cx - setup.x0)) + offset, target.depth_bits);
+    if (target.depth_bits == 0) {
+      std::fill(span.depth, span.depth + n, 0u);
+    } else {
+      depth_codes(SpanPlane{z_plane.at_row(cy, setup.y0), z_plane.dfdx}, offset, x0, setup.x0, n, depth_scale,
+                  span.depth);
     }
     if (constant) {
-      for (int i = 0; i < n; ++i)
-        for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = constant_codes[k];
+      for (int i = 0; i < n; ++i) std::memcpy(span.rgba + 4 * i, constant_codes, sizeof(constant_codes));
     } else {
-      const double q_row = q_plane.at_row(cy, setup.y0);
-      double c_row[4];
-      for (int k = 0; k < 4; ++k) c_row[k] = c_plane[k].at_row(cy, setup.y0);
-      for (int i = 0; i < n; ++i) {
-        const double dx = static_cast<double>(x0 + i) + 0.5 - setup.x0;
-        const double inv_q = 1.0 / (q_row + q_plane.dfdx * dx);
-        for (int k = 0; k < 4; ++k) {
-          const double value = (c_row[k] + c_plane[k].dfdx * dx) * inv_q;
-          span.rgba[4 * i + k] = static_cast<std::uint16_t>(float_to_fixed(value, target.color_bits[k]));
-        }
-      }
+      SpanPlane c[4];
+      for (int k = 0; k < 4; ++k) c[k] = SpanPlane{c_plane[k].at_row(cy, setup.y0), c_plane[k].dfdx};
+      color_codes(SpanPlane{q_plane.at_row(cy, setup.y0), q_plane.dfdx}, c, color_scale, x0, setup.x0, n, span.rgba);
     }
     sink.process(span);
   }

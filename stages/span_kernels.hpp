@@ -1,0 +1,27 @@
+// The rasterizer's per-fragment arithmetic over one span: a plain scalar reference and
+// an SSE2 kernel that computes the same IEEE operations in the same order, so the two
+// agree bit for bit (tests/span_kernels_test.cpp checks them on random input).
+#pragma once
+#include <cstdint>
+
+namespace passim {
+
+// A plane evaluated along a span: value(i) = (row + d_dx·dx_i), dx_i = (x0 + i + 1/2) − x_ref.
+struct SpanPlane {
+  double row = 0.0;
+  double d_dx = 0.0;
+};
+
+// Depth codes: code(i) = round(clamp((row + d_dx·dx_i) + offset, 0, 1)·scale), scale = 2^N − 1.
+void depth_codes_scalar(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                        std::uint32_t* out);
+void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out);
+
+// Perspective-correct RGBA codes: c_k(i) = round(clamp((row_k + d_dx_k·dx_i)·(1/(q.row + q.d_dx·dx_i)), 0, 1)·scale_k),
+// written interleaved (4 per fragment). Scales must be below 2^16.
+void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                        std::uint16_t* out);
+void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                 std::uint16_t* out);
+
+}  // namespace passim
