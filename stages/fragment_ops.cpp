@@ -185,6 +185,87 @@ std::uint64_t FragmentOps::stencil_and_depth(const FragmentOpsState& ops, const 
 namespace {
 }  // namespace
 
+namespace {
+
+// Depth test (optional) and colour replace in one pass: the common case of the general
+// path below, giving the same planes and counters (tests/fragment_ops_test.cpp compares them).
+template <class Cmp, bool kDepth, bool kAllChannels>
+std::uint64_t replace_loop(Cmp cmp, bool depth_write, const std::array<bool, 4>& mask, const FragmentSpan& span,
+                           int begin, int end, std::uint32_t* depth, std::uint16_t* color) {
+  std::uint64_t passed = 0;
+  for (int i = begin; i < end; ++i) {
+    if constexpr (kDepth) {
+      const std::uint32_t z = span.depth[i];
+      if (!cmp(z, depth[i])) continue;
+      if (depth_write) depth[i] = z;
+    }
+    ++passed;
+    const std::uint16_t* src = span.rgba + 4 * i;
+    std::uint16_t* d = color + 4 * i;
+    if constexpr (kAllChannels) {
+      std::memcpy(d, src, 4 * sizeof(std::uint16_t));
+    } else {
+      for (int k = 0; k < 4; ++k)
+        if (mask[k]) d[k] = src[k];
+    }
+  }
+  return passed;
+}
+
+template <bool kDepth, bool kAll, class Cmp>
+std::uint64_t replace_dispatch(Cmp cmp, bool w, const std::array<bool, 4>& m, const FragmentSpan& s, int b, int e,
+                               std::uint32_t* depth, std::uint16_t* color) {
+  return replace_loop<Cmp, kDepth, kAll>(cmp, w, m, s, b, e, depth, color);
+}
+
+template <bool kAll>
+std::uint64_t replace_by_func(bool depth_on, GLenum func, bool w, const std::array<bool, 4>& m, const FragmentSpan& s,
+                              int b, int e, std::uint32_t* depth, std::uint16_t* color) {
+  using U = std::uint32_t;
+  if (!depth_on) return replace_dispatch<false, kAll>([](U, U) { return true; }, w, m, s, b, e, depth, color);
+  switch (func) {
+    case GL_NEVER: return replace_dispatch<true, kAll>([](U, U) { return false; }, w, m, s, b, e, depth, color);
+    case GL_LESS: return replace_dispatch<true, kAll>([](U a, U c) { return a < c; }, w, m, s, b, e, depth, color);
+    case GL_EQUAL: return replace_dispatch<true, kAll>([](U a, U c) { return a == c; }, w, m, s, b, e, depth, color);
+    case GL_LEQUAL: return replace_dispatch<true, kAll>([](U a, U c) { return a <= c; }, w, m, s, b, e, depth, color);
+    case GL_GREATER: return replace_dispatch<true, kAll>([](U a, U c) { return a > c; }, w, m, s, b, e, depth, color);
+    case GL_NOTEQUAL: return replace_dispatch<true, kAll>([](U a, U c) { return a != c; }, w, m, s, b, e, depth, color);
+    case GL_GEQUAL: return replace_dispatch<true, kAll>([](U a, U c) { return a >= c; }, w, m, s, b, e, depth, color);
+    default: return replace_dispatch<true, kAll>([](U, U) { return true; }, w, m, s, b, e, depth, color);
+  }
+}
+
+}  // namespace
+
+bool FragmentOps::general_path_only = false;
+
+void FragmentOps::replace_span(const FragmentSpan& span, int begin, int end, Counters& counters) {
+  const FragmentOpsState& ops = *in_.ops;
+  const FramebufferControlState& ctl = *in_.control;
+  const FramebufferConfig& cfg = fb_.config;
+  const std::size_t row_base = fb_.pixel_index(span.x0, span.y);
+  const bool depth_on = ops.depth_test && cfg.depth_bits > 0;
+  std::uint32_t* depth = depth_on ? fb_.depth.data() + row_base : nullptr;
+  std::uint16_t* color = fb_.color[static_cast<int>(in_.draw_buffers->front())].rgba.data() + 4 * row_base;
+  const auto& m = ctl.color_mask;
+  const bool all = m[0] && m[1] && m[2] && m[3];
+  const std::uint64_t passed =
+      all ? replace_by_func<true>(depth_on, ops.depth_func, ctl.depth_mask, m, span, begin, end, depth, color)
+          : replace_by_func<false>(depth_on, ops.depth_func, ctl.depth_mask, m, span, begin, end, depth, color);
+  const std::uint64_t n = static_cast<std::uint64_t>(end - begin);
+  if (depth_on) {
+    const std::uint64_t bits = static_cast<std::uint64_t>(cfg.depth_bits);
+    counters.depth_bits_read += n * bits;
+    if (ctl.depth_mask) counters.depth_bits_written += passed * bits;
+    counters.killed_depth += n - passed;
+  }
+  counters.fragments_written += passed;
+  int mask_bits = 0;
+  for (int k = 0; k < 4; ++k)
+    if (m[k]) mask_bits += cfg.color_bits[k];
+  counters.color_bits_written += passed * static_cast<std::uint64_t>(mask_bits);
+}
+
 void FragmentOps::process(FragmentSpan& span) {
   const FragmentOpsState& ops = *in_.ops;
   const FramebufferControlState& ctl = *in_.control;
@@ -204,6 +285,11 @@ void FragmentOps::process(FragmentSpan& span) {
     end = b;
   }
   if (begin >= end) return;
+  if (!general_path_only && !ops.alpha_test && !(ops.stencil_test && cfg.stencil_bits > 0) && !ops.blend &&
+      !ops.logic_op_enabled && fragment_bits == cfg.color_bits && in_.draw_buffers->size() == 1) {
+    replace_span(span, begin, end, counters);
+    return;
+  }
   std::fill(live + begin, live + end, std::uint8_t{1});
   std::uint64_t alive = static_cast<std::uint64_t>(end - begin);
 

@@ -25,8 +25,12 @@ class FragmentOps final : public FragmentSink {
   FragmentOps(Framebuffer& fb, Counters*& counters) : fb_(fb), counters_(counters) {}
   void configure(const FragmentOpsInput& input) { in_ = input; }
   void process(FragmentSpan& span) override;
+  // Testing hook: run every span through the general path (the specialised replace path
+  // is checked against it).
+  static bool general_path_only;
 
  private:
+  void replace_span(const FragmentSpan& span, int begin, int end, Counters& counters);
   // Return the number of fragments they kill.
   std::uint64_t depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
                            std::uint32_t* stored, std::int64_t tested_hint, Counters& counters);

@@ -207,3 +207,48 @@ TEST(FlatShading, ProvokingVertexIsLastForTrianglesFirstForPolygons) {
   ctx.glEnd();
   EXPECT_EQ(pixel(ctx, 3, 0), (std::array<std::uint32_t, 4>{255, 0, 0, 255}));
 }
+
+#include <random>
+
+#include "stages/fragment_ops.hpp"
+
+TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
+  // Random triangles under random depth functions, depth masks, colour masks, scissor:
+  // planes and counters must be identical with and without the specialised path.
+  const GLenum funcs[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+  auto draw = [&](Context& ctx, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-4.0f, 36.0f), z(-1.0f, 1.0f), c(0.0f, 1.0f);
+    test::window_projection(ctx);
+    ctx.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    for (int k = 0; k < 60; ++k) {
+      if (k % 6 == 0) {
+        (rng() % 4) ? ctx.glEnable(GL_DEPTH_TEST) : ctx.glDisable(GL_DEPTH_TEST);
+        ctx.glDepthFunc(funcs[rng() % 8]);
+        ctx.glDepthMask(rng() % 3 != 0);
+        ctx.glColorMask(rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0);
+        (rng() % 3 == 0) ? ctx.glEnable(GL_SCISSOR_TEST) : ctx.glDisable(GL_SCISSOR_TEST);
+        ctx.glScissor(static_cast<int>(rng() % 16), static_cast<int>(rng() % 16), 10, 12);
+        ctx.glShadeModel(rng() % 2 ? GL_FLAT : GL_SMOOTH);
+      }
+      ctx.glBegin(GL_TRIANGLES);
+      for (int v = 0; v < 3; ++v) {
+        ctx.glColor4f(c(rng), c(rng), c(rng), c(rng));
+        ctx.glVertex3f(pos(rng), pos(rng), z(rng));
+      }
+      ctx.glEnd();
+    }
+  };
+  for (int bits : {8, 12}) {
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+      Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
+      draw(fast, seed);
+      FragmentOps::general_path_only = true;
+      draw(general, seed);
+      FragmentOps::general_path_only = false;
+      ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba) << seed;
+      ASSERT_EQ(fast.framebuffer().depth, general.framebuffer().depth) << seed;
+      ASSERT_TRUE(fast.total_counters() == general.total_counters()) << seed;
+    }
+  }
+}
