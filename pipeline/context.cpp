@@ -182,6 +182,8 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_HISTOGRAM:
     case GL_MINMAX:
       unmodelled_caps_[cap] = v;
+      texturing_enabled_ = unmodelled_caps_[GL_TEXTURE_1D] || unmodelled_caps_[GL_TEXTURE_2D] ||
+                           unmodelled_caps_[GL_TEXTURE_3D];
       if (v) warn_once(fmt::format("{} is enabled, but that stage is not modelled yet: it has no effect", enum_name(cap)));
       return true;
     default: return false;

@@ -273,6 +273,7 @@ class Context {
   PixelState pixel_;
   ClientArrayState arrays_;
   std::map<GLenum, bool> unmodelled_caps_;  // enables accepted and stored, not yet modelled
+  bool texturing_enabled_ = false;
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};
   bool normal_matrix_dirty_ = true;

@@ -308,7 +308,8 @@ void Context::submit_vertex(const Vec4& object) {
     for (int k = 0; k < 4; ++k) v.color[0][k] = quantise(current_.color[k], fragment_bits_[k]);
     v.color[1] = v.color[0];
   }
-  v.tex = transform_.texture.back() * current_.texcoord;
+  // Texture coordinates are carried only while a texture target is enabled.
+  if (texturing_enabled_) v.tex = transform_.texture.back() * current_.texcoord;
   emit_primitive_vertex(v);
 }
 

@@ -49,7 +49,8 @@ LitColor light_vertex(const LightingState& L, const Material& m, const Vec4& eye
     if (glm::dot(n, vp) != 0.0) {  // f_i
       Vec3 h = vp + (L.local_viewer ? unit(-v) : Vec3(0.0, 0.0, 1.0));
       double n_dot_h = dot_clamped(n, unit(h));
-      double power = (n_dot_h == 0.0 && m.shininess == 0.0) ? 1.0 : std::pow(n_dot_h, m.shininess);
+      // pow(x, 0) is 1 for every x (C11 7.12.7.4), so the call is skipped then: same bits.
+      const double power = m.shininess == 0.0 ? 1.0 : std::pow(n_dot_h, m.shininess);
       spec = power * Vec3(m.specular) * Vec3(light.specular);
     }
     const double k = attenuation * spot;
