@@ -42,11 +42,12 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
     for (ColorBufferId id : draw_buffers) {
       std::uint16_t* rgba = fb.color[static_cast<int>(id)].rgba.data();
       if (all_channels) {
-        // Whole pixels: fill each row of the region with the clear pattern.
-        for (int y = y0; y < y1; ++y) {
-          std::uint16_t* row = rgba + 4 * fb.pixel_index(x0, y);
-          for (int x = 0; x < x1 - x0; ++x) std::memcpy(row + 4 * x, code, sizeof(code));
-        }
+        // Whole pixels: build one row of the clear pattern, then copy it into every row.
+        const std::size_t row_values = 4 * static_cast<std::size_t>(x1 - x0);
+        std::uint16_t* first = rgba + 4 * fb.pixel_index(x0, y0);
+        for (std::size_t x = 0; x < row_values; x += 4) std::memcpy(first + x, code, sizeof(code));
+        for (int y = y0 + 1; y < y1; ++y)
+          std::memcpy(rgba + 4 * fb.pixel_index(x0, y), first, row_values * sizeof(std::uint16_t));
       } else {
         for_each_pixel([&](std::size_t p) {
           for (int k = 0; k < 4; ++k)
@@ -59,7 +60,7 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
   }
   if ((mask & GL_DEPTH_BUFFER_BIT) && cfg.depth_bits > 0 && ctl.depth_mask) {
     const std::uint32_t code = float_to_fixed(ctl.clear_depth, cfg.depth_bits);
-    for_each_pixel([&](std::size_t p) { fb.depth[p] = code; });
+    for (int y = y0; y < y1; ++y) std::fill_n(fb.depth.begin() + static_cast<std::ptrdiff_t>(fb.pixel_index(x0, y)), x1 - x0, code);
     counters.clear_pixels += pixels;
     counters.depth_bits_written += pixels * static_cast<std::uint64_t>(cfg.depth_bits);
   }

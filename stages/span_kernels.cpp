@@ -3,6 +3,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PASSIM_HAVE_AVX2_KERNEL 1
+#endif
 
 namespace passim {
 namespace {
@@ -65,8 +69,63 @@ void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n,
   depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
 }
 
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+namespace {
+// AVX2: four fragments at a time, the same operations as the scalar reference (no FMA:
+// each multiply and add is its own instruction, and -ffp-contract=off forbids fusing them).
+__attribute__((target("avx2"))) void color_codes_avx2(const SpanPlane& q, const SpanPlane c[4], const double scale[4],
+                                                      int x0, double x_ref, int n, std::uint16_t* out) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  const __m256d q_row = _mm256_set1_pd(q.row), q_d = _mm256_set1_pd(q.d_dx);
+  const __m256d ref = _mm256_set1_pd(x_ref);
+  __m256d c_row[4], c_d[4], s[4];
+  for (int k = 0; k < 4; ++k) {
+    c_row[k] = _mm256_set1_pd(c[k].row);
+    c_d[k] = _mm256_set1_pd(c[k].d_dx);
+    s[k] = _mm256_set1_pd(scale[k]);
+  }
+  const __m128i bias = _mm_set1_epi32(32768), flip = _mm_set1_epi16(static_cast<short>(0x8000));
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d xs = _mm256_cvtepi32_pd(_mm_setr_epi32(x0 + i, x0 + i + 1, x0 + i + 2, x0 + i + 3));
+    const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
+    const __m256d inv_q = _mm256_div_pd(one, _mm256_add_pd(q_row, _mm256_mul_pd(q_d, dx)));
+    __m128i k4[4];
+    for (int k = 0; k < 4; ++k) {
+      __m256d v = _mm256_mul_pd(_mm256_add_pd(c_row[k], _mm256_mul_pd(c_d[k], dx)), inv_q);
+      v = _mm256_min_pd(_mm256_max_pd(v, zero), one);  // NaN -> 0 as MAXPD returns the second operand
+      k4[k] = _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(v, s[k]), half));
+    }
+    // k4[k] = channel k of fragments 0..3; transpose to r g b a per fragment, then pack.
+    const __m128i rg_lo = _mm_unpacklo_epi32(k4[0], k4[1]), rg_hi = _mm_unpackhi_epi32(k4[0], k4[1]);
+    const __m128i ba_lo = _mm_unpacklo_epi32(k4[2], k4[3]), ba_hi = _mm_unpackhi_epi32(k4[2], k4[3]);
+    const __m128i f0 = _mm_sub_epi32(_mm_unpacklo_epi64(rg_lo, ba_lo), bias);
+    const __m128i f1 = _mm_sub_epi32(_mm_unpackhi_epi64(rg_lo, ba_lo), bias);
+    const __m128i f2 = _mm_sub_epi32(_mm_unpacklo_epi64(rg_hi, ba_hi), bias);
+    const __m128i f3 = _mm_sub_epi32(_mm_unpackhi_epi64(rg_hi, ba_hi), bias);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i), _mm_xor_si128(_mm_packs_epi32(f0, f1), flip));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i + 8), _mm_xor_si128(_mm_packs_epi32(f2, f3), flip));
+  }
+  color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
+}
+}  // namespace
+bool color_codes_has_avx2() { return __builtin_cpu_supports("avx2"); }
+void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                      std::uint16_t* out) {
+  color_codes_avx2(q, c, scale, x0, x_ref, n, out);
+}
+#else
+bool color_codes_has_avx2() { return false; }
+void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                      std::uint16_t* out) {
+  color_codes(q, c, scale, x0, x_ref, n, out);
+}
+#endif
+
 void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                  std::uint16_t* out) {
+  static const bool avx2 = color_codes_has_avx2();
+  if (avx2 && n >= 4) return color_codes_wide(q, c, scale, x0, x_ref, n, out);
   const Lanes L;
   const __m128d q_row = _mm_set1_pd(q.row), q_d = _mm_set1_pd(q.d_dx), one = _mm_set1_pd(1.0);
   __m128d c_row[4], c_d[4], s[4];
@@ -94,6 +153,11 @@ void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4]
   color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
 }
 #else
+bool color_codes_has_avx2() { return false; }
+void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                      std::uint16_t* out) {
+  color_codes_scalar(q, c, scale, x0, x_ref, n, out);
+}
 void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
   depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
 }

@@ -24,4 +24,10 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
 void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                  std::uint16_t* out);
 
+// The AVX2 kernel (four fragments at a time) used by color_codes when the processor has
+// AVX2; exposed so the tests can compare it with the scalar reference directly.
+bool color_codes_has_avx2();
+void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                      std::uint16_t* out);
+
 }  // namespace passim

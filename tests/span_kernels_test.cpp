@@ -46,6 +46,11 @@ TEST(SpanKernels, ColorCodesMatchTheScalarReference) {
       color_codes_scalar(qp, c, scale, x0, 3.0625, n, a.data());
       color_codes(qp, c, scale, x0, 3.0625, n, b.data());
       ASSERT_EQ(a, b) << "bits " << bits << " trial " << trial;
+      if (color_codes_has_avx2()) {
+        std::vector<std::uint16_t> w(4 * n);
+        color_codes_wide(qp, c, scale, x0, 3.0625, n, w.data());
+        ASSERT_EQ(a, w) << "AVX2, bits " << bits << " trial " << trial;
+      }
     }
   }
 }
