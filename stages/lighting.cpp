@@ -33,7 +33,7 @@ LitColor light_vertex(const LightingState& L, const Material& m, const Vec4& eye
       double d = std::sqrt(glm::dot(vp, vp));
       attenuation = 1.0 / (light.constant_attenuation + light.linear_attenuation * d +
                            light.quadratic_attenuation * d * d);
-      vp = unit(vp);
+      if (d > 0.0) vp = vp / d;  // unit(vp), with the length already computed
     } else {
       vp = unit(Vec3(light.position));
     }

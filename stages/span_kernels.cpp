@@ -58,6 +58,8 @@ inline __m128d centre_offsets(int x, double x_ref) {
 
 void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
   if (scale >= 2147483647.0) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);  // 31-32 bits
+  static const bool avx2 = depth_codes_has_avx2();
+  if (avx2 && n >= 4) return depth_codes_wide(z, offset, x0, x_ref, n, scale, out);
   const Lanes L;
   const __m128d row = _mm_set1_pd(z.row), d = _mm_set1_pd(z.d_dx), off = _mm_set1_pd(offset), s = _mm_set1_pd(scale);
   int i = 0;
@@ -108,7 +110,29 @@ __attribute__((target("avx2"))) void color_codes_avx2(const SpanPlane& q, const 
   }
   color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
 }
+
+__attribute__((target("avx2"))) void depth_codes_avx2(const SpanPlane& z, double offset, int x0, double x_ref, int n,
+                                                      double scale, std::uint32_t* out) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  const __m256d row = _mm256_set1_pd(z.row), d = _mm256_set1_pd(z.d_dx), off = _mm256_set1_pd(offset);
+  const __m256d s = _mm256_set1_pd(scale), ref = _mm256_set1_pd(x_ref);
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d xs = _mm256_cvtepi32_pd(_mm_setr_epi32(x0 + i, x0 + i + 1, x0 + i + 2, x0 + i + 3));
+    const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
+    __m256d v = _mm256_add_pd(_mm256_add_pd(row, _mm256_mul_pd(d, dx)), off);
+    v = _mm256_min_pd(_mm256_max_pd(v, zero), one);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(v, s), half)));
+  }
+  depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
+}
 }  // namespace
+bool depth_codes_has_avx2() { return __builtin_cpu_supports("avx2"); }
+void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                      std::uint32_t* out) {
+  if (scale >= 2147483647.0) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
+  depth_codes_avx2(z, offset, x0, x_ref, n, scale, out);
+}
 bool color_codes_has_avx2() { return __builtin_cpu_supports("avx2"); }
 void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                       std::uint16_t* out) {
@@ -118,7 +142,12 @@ void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double sca
 bool color_codes_has_avx2() { return false; }
 void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                       std::uint16_t* out) {
-  color_codes(q, c, scale, x0, x_ref, n, out);
+  color_codes_scalar(q, c, scale, x0, x_ref, n, out);
+}
+bool depth_codes_has_avx2() { return false; }
+void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                      std::uint32_t* out) {
+  depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
 }
 #endif
 
@@ -157,6 +186,11 @@ bool color_codes_has_avx2() { return false; }
 void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                       std::uint16_t* out) {
   color_codes_scalar(q, c, scale, x0, x_ref, n, out);
+}
+bool depth_codes_has_avx2() { return false; }
+void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                      std::uint32_t* out) {
+  depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
 }
 void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
   depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);

@@ -27,6 +27,9 @@ void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4]
 // The AVX2 kernel (four fragments at a time) used by color_codes when the processor has
 // AVX2; exposed so the tests can compare it with the scalar reference directly.
 bool color_codes_has_avx2();
+bool depth_codes_has_avx2();
+void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                      std::uint32_t* out);
 void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                       std::uint16_t* out);
 

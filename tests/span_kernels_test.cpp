@@ -26,6 +26,11 @@ TEST(SpanKernels, DepthCodesMatchTheScalarReference) {
       depth_codes_scalar(z, offset, x0, 17.3125, n, scale, a.data());
       depth_codes(z, offset, x0, 17.3125, n, scale, b.data());
       ASSERT_EQ(a, b) << "bits " << bits << " trial " << trial;
+      if (depth_codes_has_avx2()) {
+        std::vector<std::uint32_t> w(n);
+        depth_codes_wide(z, offset, x0, 17.3125, n, scale, w.data());
+        ASSERT_EQ(a, w) << "AVX2, bits " << bits << " trial " << trial;
+      }
     }
   }
 }
