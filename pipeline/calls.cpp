@@ -16,8 +16,12 @@ namespace {
 // Output scratch for query calls replayed from a trace.
 template <class T>
 T* output_scratch() {
-  static thread_local T buffer[64];
-  return buffer;
+  if constexpr (std::is_void_v<T>) {
+    return output_scratch<std::byte>();
+  } else {
+    static thread_local T buffer[65536];
+    return buffer;
+  }
 }
 
 template <class T>
@@ -27,7 +31,7 @@ T arg(const Value& v) {
   } else if constexpr (std::is_pointer_v<T> && std::is_const_v<std::remove_pointer_t<T>>) {
     return v.bytes ? reinterpret_cast<T>(v.bytes->data()) : nullptr;
   } else if constexpr (std::is_pointer_v<T>) {
-    return output_scratch<std::remove_pointer_t<T>>();
+    return static_cast<T>(output_scratch<std::remove_pointer_t<T>>());
   } else if constexpr (std::is_floating_point_v<T>) {
     return static_cast<T>(v.d);
   } else {
@@ -223,6 +227,35 @@ const std::vector<CallInfo>& table() {
       ROW(glPolygonOffset, "ff", kNone),
       ROW(glPointSize, "f", kNone),
       ROW(glLineWidth, "f", kNone),
+      // pixel storage and textures
+      ROW(glPixelStorei, "ex", kNotCompiled),
+      ROW(glPixelStoref, "ey", kNotCompiled),
+      ROW(glGenTextures, "iO", kNotCompiled),
+      ROW(glDeleteTextures, "iU*", kNotCompiled),
+      ROW(glBindTexture, "eu", kNone),
+      ROW(glIsTexture, "u", kNotCompiled),
+      ROW(glTexImage1D, "eixiieeV*", kNone),
+      ROW(glTexImage2D, "eixiiieeV*", kNone),
+      ROW(glTexSubImage1D, "eiiieeV*", kNone),
+      ROW(glTexSubImage2D, "eiiiiieeV*", kNone),
+      ROW(glCopyTexImage1D, "eieiiii", kNone),
+      ROW(glCopyTexImage2D, "eieiiiii", kNone),
+      ROW(glCopyTexSubImage1D, "eiiiii", kNone),
+      ROW(glCopyTexSubImage2D, "eiiiiiii", kNone),
+      ROW(glGetTexImage, "eieeO", kQuery),
+      ROW(glTexParameteri, "eex", kNone),
+      ROW(glTexParameterf, "eey", kNone),
+      ROW(glTexParameterfv, "eeFp", kNone),
+      ROW(glGetTexParameterfv, "eeO", kQuery),
+      ROW(glGetTexParameteriv, "eeO", kQuery),
+      ROW(glGetTexLevelParameteriv, "eieO", kQuery),
+      ROW(glTexEnvi, "eex", kNone),
+      ROW(glTexEnvf, "eey", kNone),
+      ROW(glTexEnvfv, "eeFp", kNone),
+      ROW(glTexGeni, "eex", kNone),
+      ROW(glTexGenf, "eey", kNone),
+      ROW(glTexGenfv, "eeFp", kNone),
+      ROW(glTexGendv, "eeDp", kNone),
       // passes (EXT_debug_marker)
       ROW(glPushGroupMarkerEXT, "is", kNotCompiled),
       ROW(glPopGroupMarkerEXT, "", kNotCompiled),
@@ -322,6 +355,10 @@ int pname_count(GLenum pname) {
     case GL_POSITION:
     case GL_AMBIENT_AND_DIFFUSE:
     case GL_LIGHT_MODEL_AMBIENT:
+    case GL_TEXTURE_BORDER_COLOR:
+    case GL_TEXTURE_ENV_COLOR:
+    case GL_OBJECT_PLANE:
+    case GL_EYE_PLANE:
       return 4;
     case GL_SPOT_DIRECTION:
     case GL_COLOR_INDEXES:
@@ -335,6 +372,24 @@ int pname_count(GLenum pname) {
     case GL_LIGHT_MODEL_LOCAL_VIEWER:
     case GL_LIGHT_MODEL_TWO_SIDE:
     case GL_LIGHT_MODEL_COLOR_CONTROL:
+    case GL_TEXTURE_ENV_MODE:
+    case GL_TEXTURE_GEN_MODE:
+    case GL_TEXTURE_MIN_FILTER:
+    case GL_TEXTURE_MAG_FILTER:
+    case GL_TEXTURE_WRAP_S:
+    case GL_TEXTURE_WRAP_T:
+    case GL_TEXTURE_WRAP_R:
+    case GL_TEXTURE_MIN_LOD:
+    case GL_TEXTURE_MAX_LOD:
+    case GL_TEXTURE_BASE_LEVEL:
+    case GL_TEXTURE_MAX_LEVEL:
+    case GL_TEXTURE_PRIORITY:
+    case GL_TEXTURE_COMPARE_SGIX:
+    case GL_TEXTURE_COMPARE_OPERATOR_SGIX:
+    case GL_SHADOW_AMBIENT_SGIX:
+    case GL_TEXTURE_COMPARE_MODE:
+    case GL_TEXTURE_COMPARE_FUNC:
+    case GL_DEPTH_TEXTURE_MODE:
       return 1;
     default:
       return 0;

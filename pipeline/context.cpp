@@ -27,6 +27,8 @@ Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
   lighting_.lights.resize(static_cast<std::size_t>(profile_.limits.max_lights));
   lighting_.lights[0].diffuse = Vec4(1.0);
   lighting_.lights[0].specular = Vec4(1.0);
+  textures_.gen[0].object_plane = textures_.gen[0].eye_plane = Vec4(1.0, 0.0, 0.0, 0.0);  // §2.10.4 defaults
+  textures_.gen[1].object_plane = textures_.gen[1].eye_plane = Vec4(0.0, 1.0, 0.0, 0.0);
   update_fragment_bits();
   scratch_->fragment_ops.configure(FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_});
 }
@@ -157,6 +159,11 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_BLEND: fragment_.blend = v; return true;
     case GL_DITHER: fragment_.dither = v; return true;  // A3: no effect on the bits
     case GL_COLOR_LOGIC_OP: fragment_.logic_op_enabled = v; return true;
+    case GL_TEXTURE_1D: textures_.enabled_1d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
+    case GL_TEXTURE_2D: textures_.enabled_2d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
+    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
+      textures_.gen[cap - GL_TEXTURE_GEN_S].enabled = v;
+      return true;
     // Accepted and stored; their stages come with later work (see docs/status.md).
     case GL_INDEX_LOGIC_OP:
     case GL_POINT_SMOOTH:
@@ -165,13 +172,7 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_LINE_STIPPLE:
     case GL_POLYGON_STIPPLE:
     case GL_FOG:
-    case GL_TEXTURE_1D:
-    case GL_TEXTURE_2D:
     case GL_TEXTURE_3D:
-    case GL_TEXTURE_GEN_S:
-    case GL_TEXTURE_GEN_T:
-    case GL_TEXTURE_GEN_R:
-    case GL_TEXTURE_GEN_Q:
     case GL_AUTO_NORMAL:
     case GL_COLOR_TABLE:
     case GL_POST_CONVOLUTION_COLOR_TABLE:
@@ -182,8 +183,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_HISTOGRAM:
     case GL_MINMAX:
       unmodelled_caps_[cap] = v;
-      texturing_enabled_ = unmodelled_caps_[GL_TEXTURE_1D] || unmodelled_caps_[GL_TEXTURE_2D] ||
-                           unmodelled_caps_[GL_TEXTURE_3D];
       if (v) warn_once(fmt::format("{} is enabled, but that stage is not modelled yet: it has no effect", enum_name(cap)));
       return true;
     default: return false;
@@ -244,10 +243,27 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_BLEND: return one(fragment_.blend);
     case GL_DITHER: return one(fragment_.dither);
     case GL_COLOR_LOGIC_OP: return one(fragment_.logic_op_enabled);
+    case GL_TEXTURE_1D: return one(textures_.enabled_1d);
+    case GL_TEXTURE_2D: return one(textures_.enabled_2d);
+    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
+      return one(textures_.gen[p - GL_TEXTURE_GEN_S].enabled);
+    case GL_TEXTURE_BINDING_1D: return one(textures_.bound_1d);
+    case GL_TEXTURE_BINDING_2D: return one(textures_.bound_2d);
+    case GL_UNPACK_ALIGNMENT: return one(pixel_store_.unpack.alignment);
+    case GL_UNPACK_ROW_LENGTH: return one(pixel_store_.unpack.row_length);
+    case GL_UNPACK_SKIP_ROWS: return one(pixel_store_.unpack.skip_rows);
+    case GL_UNPACK_SKIP_PIXELS: return one(pixel_store_.unpack.skip_pixels);
+    case GL_UNPACK_SWAP_BYTES: return one(pixel_store_.unpack.swap_bytes);
+    case GL_UNPACK_LSB_FIRST: return one(pixel_store_.unpack.lsb_first);
+    case GL_PACK_ALIGNMENT: return one(pixel_store_.pack.alignment);
+    case GL_PACK_ROW_LENGTH: return one(pixel_store_.pack.row_length);
+    case GL_PACK_SKIP_ROWS: return one(pixel_store_.pack.skip_rows);
+    case GL_PACK_SKIP_PIXELS: return one(pixel_store_.pack.skip_pixels);
+    case GL_PACK_SWAP_BYTES: return one(pixel_store_.pack.swap_bytes);
+    case GL_PACK_LSB_FIRST: return one(pixel_store_.pack.lsb_first);
     case GL_INDEX_LOGIC_OP: case GL_POINT_SMOOTH: case GL_LINE_SMOOTH: case GL_POLYGON_SMOOTH:
-    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_FOG: case GL_TEXTURE_1D: case GL_TEXTURE_2D:
-    case GL_TEXTURE_3D: case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R:
-    case GL_TEXTURE_GEN_Q: case GL_AUTO_NORMAL: case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
+    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_FOG:
+    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
     case GL_SEPARABLE_2D: case GL_HISTOGRAM: case GL_MINMAX:
       return one(0.0);

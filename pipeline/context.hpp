@@ -17,6 +17,8 @@
 #include "pipeline/gl.hpp"
 #include "pipeline/profile.hpp"
 #include "pipeline/state.hpp"
+#include "pipeline/texture.hpp"
+#include "stages/pixel_unpack.hpp"
 #include "stages/rasterizer.hpp"
 #include "stages/vertex.hpp"
 
@@ -182,6 +184,45 @@ class Context {
   void glPopGroupMarkerEXT();
   void glInsertEventMarkerEXT(GLsizei length, const GLchar* marker);
 
+  // ---- pixel storage (§3.6.1) ----
+  void glPixelStorei(GLenum pname, GLint param);
+  void glPixelStoref(GLenum pname, GLfloat param);
+
+  // ---- textures (§3.8, SGIX_depth_texture, SGIX_shadow, ARB_shadow) ----
+  void glGenTextures(GLsizei n, GLuint* textures);
+  void glDeleteTextures(GLsizei n, const GLuint* textures);
+  void glBindTexture(GLenum target, GLuint texture);
+  GLboolean glIsTexture(GLuint texture);
+  void glTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLint border, GLenum format,
+                    GLenum type, const void* pixels);
+  void glTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLsizei height, GLint border,
+                    GLenum format, GLenum type, const void* pixels);
+  void glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
+                       const void* pixels);
+  void glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
+                       GLenum format, GLenum type, const void* pixels);
+  void glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                        GLint border);
+  void glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                        GLsizei height, GLint border);
+  void glCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei width);
+  void glCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y, GLsizei width,
+                           GLsizei height);
+  void glGetTexImage(GLenum target, GLint level, GLenum format, GLenum type, void* pixels);
+  void glTexParameteri(GLenum target, GLenum pname, GLint param);
+  void glTexParameterf(GLenum target, GLenum pname, GLfloat param);
+  void glTexParameterfv(GLenum target, GLenum pname, const GLfloat* params);
+  void glGetTexParameterfv(GLenum target, GLenum pname, GLfloat* params);
+  void glGetTexParameteriv(GLenum target, GLenum pname, GLint* params);
+  void glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname, GLint* params);
+  void glTexEnvi(GLenum target, GLenum pname, GLint param);
+  void glTexEnvf(GLenum target, GLenum pname, GLfloat param);
+  void glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params);
+  void glTexGeni(GLenum coord, GLenum pname, GLint param);
+  void glTexGenf(GLenum coord, GLenum pname, GLfloat param);
+  void glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params);
+  void glTexGendv(GLenum coord, GLenum pname, const GLdouble* params);
+
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();
 
@@ -202,6 +243,9 @@ class Context {
   const ColorPlane* color_buffer(GLenum which) const;
   // Bytes behind a client-array pointer (set by the trace replayer for bounds checks).
   void set_client_array_extent(GLenum array, std::size_t bytes);
+  const PixelStore& unpack_store() const { return pixel_store_.unpack; }
+  // The texture object bound to a target (GL_TEXTURE_1D/2D); nullptr for another target.
+  const TextureObject* bound_texture(GLenum target) const;
   // Bits of each fragment colour channel (A26: alpha carried at RGB precision when the
   // framebuffer has fewer than 2 alpha bits).
   const std::array<int, 4>& fragment_color_bits() const { return fragment_bits_; }
@@ -257,6 +301,26 @@ class Context {
   void warn_once(const std::string& message);
   void apply_color_material();
   RasterVertex to_window(const ProcessedVertex& v, int face) const;
+  // Texturing.
+  TextureObject* texture_for(GLenum target);
+  void tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
+                 GLint border, GLenum format, GLenum type, const void* pixels);
+  void tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
+                     GLsizei height, GLenum format, GLenum type, const void* pixels);
+  void copy_tex_image(GLenum target, int dims, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                      GLsizei height, GLint border);
+  void copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
+                          GLsizei width, GLsizei height);
+  void store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
+                    const std::vector<double>* depth);
+  void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
+  void read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const;
+  void set_tex_parameter(GLenum target, GLenum pname, const double* v);
+  void set_tex_env(GLenum target, GLenum pname, const double* v);
+  void set_tex_gen(GLenum coord, GLenum pname, const double* v);
+  // The texture used by the next primitive (nullptr when texturing is off or incomplete).
+  void prepare_texturing(TriangleOptions& options);
+  FragmentSink& fragment_sink();
 
   Framebuffer fb_;
   MachineProfile profile_;
@@ -274,6 +338,26 @@ class Context {
   ClientArrayState arrays_;
   std::map<GLenum, bool> unmodelled_caps_;  // enables accepted and stored, not yet modelled
   bool texturing_enabled_ = false;
+  // Table 6.18-6.20 (texturing), Table 6.17 (pixel storage).
+  struct TexGenState {
+    bool enabled = false;
+    GLenum mode = GL_EYE_LINEAR;
+    Vec4 object_plane{0.0}, eye_plane{0.0};
+  };
+  struct TextureState {
+    bool enabled_1d = false, enabled_2d = false;
+    GLuint bound_1d = 0, bound_2d = 0;
+    TextureObject default_1d, default_2d;
+    std::map<GLuint, TextureObject> objects;
+    std::map<GLuint, bool> reserved;  // names handed out by glGenTextures
+    GLenum env_mode = GL_MODULATE;
+    Vec4 env_color{0.0, 0.0, 0.0, 0.0};
+    std::array<TexGenState, 4> gen{};
+  } textures_;
+  struct PixelStoreState {
+    PixelStore pack, unpack;
+  } pixel_store_;
+  bool texture_active_ = false;  // the last prepared primitive is textured
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};
   bool normal_matrix_dirty_ = true;

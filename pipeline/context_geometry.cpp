@@ -280,12 +280,15 @@ void Context::submit_vertex(const Vec4& object) {
   ProcessedVertex v;
   v.eye = transform_.modelview.back() * object;
   v.clip = transform_.projection.back() * v.eye;
-  if (lighting_.enabled) {
+  const bool sphere_map = texturing_enabled_ && ((textures_.gen[0].enabled && textures_.gen[0].mode == GL_SPHERE_MAP) ||
+                                                  (textures_.gen[1].enabled && textures_.gen[1].mode == GL_SPHERE_MAP));
+  Vec3 n(0.0);
+  if (lighting_.enabled || sphere_map) {
     // §2.10.3: normals transform by the inverse transpose of the modelview's upper 3x3.
     const Mat4& inv = normal_matrix();
-    Vec3 n = Vec3(current_.normal.x * inv[0][0] + current_.normal.y * inv[0][1] + current_.normal.z * inv[0][2],
-                  current_.normal.x * inv[1][0] + current_.normal.y * inv[1][1] + current_.normal.z * inv[1][2],
-                  current_.normal.x * inv[2][0] + current_.normal.y * inv[2][1] + current_.normal.z * inv[2][2]);
+    n = Vec3(current_.normal.x * inv[0][0] + current_.normal.y * inv[0][1] + current_.normal.z * inv[0][2],
+             current_.normal.x * inv[1][0] + current_.normal.y * inv[1][1] + current_.normal.z * inv[1][2],
+             current_.normal.x * inv[2][0] + current_.normal.y * inv[2][1] + current_.normal.z * inv[2][2]);
     if (transform_.normalize) {
       const double len = std::sqrt(glm::dot(n, n));
       if (len > 0.0) n /= len;
@@ -293,6 +296,8 @@ void Context::submit_vertex(const Vec4& object) {
       const double f = 1.0 / std::sqrt(inv[0][2] * inv[0][2] + inv[1][2] * inv[1][2] + inv[2][2] * inv[2][2]);
       n *= f;
     }
+  }
+  if (lighting_.enabled) {
     const int faces = lighting_.two_side ? 2 : 1;
     for (int f = 0; f < faces; ++f) {
       LitColor lit = light_vertex(lighting_, lighting_.material[f], v.eye, f == 0 ? n : -n);
@@ -308,8 +313,30 @@ void Context::submit_vertex(const Vec4& object) {
     for (int k = 0; k < 4; ++k) v.color[0][k] = quantise(current_.color[k], fragment_bits_[k]);
     v.color[1] = v.color[0];
   }
-  // Texture coordinates are carried only while a texture target is enabled.
-  if (texturing_enabled_) v.tex = transform_.texture.back() * current_.texcoord;
+  // Texture coordinates are carried only while a texture target is enabled: texgen (§2.10.4),
+  // then the texture matrix.
+  if (texturing_enabled_) {
+    Vec4 tc = current_.texcoord;
+    for (int k = 0; k < 4; ++k) {
+      const TexGenState& g = textures_.gen[static_cast<std::size_t>(k)];
+      if (!g.enabled) continue;
+      ++c.texgen_evaluations;
+      if (g.mode == GL_OBJECT_LINEAR) {
+        tc[k] = glm::dot(g.object_plane, object);
+      } else if (g.mode == GL_EYE_LINEAR) {
+        tc[k] = glm::dot(g.eye_plane, v.eye);
+      } else {
+        // SPHERE_MAP: u = unit eye->vertex, r = u − 2n'(n'·u), m = 2·sqrt(rx² + ry² + (rz + 1)²).
+        Vec3 u = Vec3(v.eye) / v.eye.w;
+        const double len = std::sqrt(glm::dot(u, u));
+        if (len > 0.0) u /= len;
+        const Vec3 r = u - 2.0 * n * glm::dot(n, u);
+        const double m = 2.0 * std::sqrt(r.x * r.x + r.y * r.y + (r.z + 1.0) * (r.z + 1.0));
+        tc[k] = (k == 0 ? r.x : r.y) / m + 0.5;
+      }
+    }
+    v.tex = transform_.texture.back() * tc;
+  }
   emit_primitive_vertex(v);
 }
 
@@ -388,6 +415,7 @@ RasterVertex Context::to_window(const ProcessedVertex& v, int face) const {
   r.z = (v.clip.z * iw) * ((f - n) / 2.0) + (n + f) / 2.0;
   r.w = v.clip.w;
   r.color = v.color[face];
+  r.tex = v.tex;
   return r;
 }
 
@@ -419,7 +447,9 @@ void Context::draw_point(const ProcessedVertex& v) {
   }
   RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits, fb_.config.depth_bits,
                       fragment_bits_};
-  rasterize_point(to_window(v, 0), polygon_.point_size, target, scratch_->spans, scratch_->fragment_ops, c);
+  TriangleOptions options;
+  prepare_texturing(options);
+  rasterize_point(to_window(v, 0), polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
 }
 
 void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
@@ -465,16 +495,17 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   const RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
                             fb_.config.depth_bits, fragment_bits_};
   const GLenum mode = front ? polygon_.mode_front : polygon_.mode_back;
+  TriangleOptions options;
+  prepare_texturing(options);
   if (mode == GL_POINT) {
     for (const RasterVertex& w : win)
-      rasterize_point(w, polygon_.point_size, target, scratch_->spans, scratch_->fragment_ops, c);
+      rasterize_point(w, polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
     return;
   }
   if (mode == GL_LINE) {
     warn_once("glPolygonMode(GL_LINE) is not rasterized yet: such polygons produce no fragments");
     return;
   }
-  TriangleOptions options;
   options.flat = lighting_.shade_model == GL_FLAT;
   options.flat_color = provoking.color[face];
   options.offset = polygon_.offset_fill;
@@ -482,7 +513,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   options.offset_units = polygon_.offset_units;
   // §3.5.1: a convex polygon may be decomposed; a fan from the first vertex.
   for (std::size_t k = 1; k + 1 < win.size(); ++k)
-    rasterize_triangle(win[0], win[k], win[k + 1], options, target, scratch_->spans, scratch_->fragment_ops, c);
+    rasterize_triangle(win[0], win[k], win[k + 1], options, target, scratch_->spans, fragment_sink(), c);
 }
 
 // ---------------------------------------------------------------- vertex arrays (§2.8)

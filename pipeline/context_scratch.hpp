@@ -5,14 +5,17 @@
 #include "pipeline/context.hpp"
 #include "stages/fragment_ops.hpp"
 #include "stages/fragment_span.hpp"
+#include "stages/texture_stage.hpp"
 
 namespace passim {
 
 struct Context::Scratch {
-  Scratch(Framebuffer& fb, int width) : spans(width), fragment_ops(fb, counters) {}
+  Scratch(Framebuffer& fb, int width)
+      : spans(width), fragment_ops(fb, counters), texture_stage(fragment_ops, counters) {}
   Counters* counters = nullptr;  // the current pass's counters
   SpanBuffers spans;
   FragmentOps fragment_ops;
+  TextureStage texture_stage;  // -> fragment_ops
   std::vector<ProcessedVertex> polygon, clip_scratch;
   std::vector<RasterVertex> window;
 };

@@ -19,6 +19,13 @@ struct Counters {
   std::uint64_t primitives_culled = 0;
   std::uint64_t triangles_rasterized = 0;  // after clipping and fan decomposition
   std::uint64_t lighting_evaluations = 0;  // vertex x face colour computations
+  // texturing
+  std::uint64_t texgen_evaluations = 0;  // per vertex and generated coordinate
+  std::uint64_t texture_lookups = 0;     // per fragment (per level for *_MIPMAP_LINEAR: see texels)
+  std::uint64_t texels_fetched = 0;      // texels read from texture memory (border colours excluded)
+  std::uint64_t texture_bits_read = 0;   // at the internal format's widths
+  std::uint64_t texture_bits_written = 0;
+  std::uint64_t fog_operations = 0;
   // fragments
   std::uint64_t fragments_generated = 0;
   std::uint64_t killed_scissor = 0;
@@ -51,6 +58,12 @@ struct Counters {
     PASSIM_COUNTER(primitives_culled)
     PASSIM_COUNTER(triangles_rasterized)
     PASSIM_COUNTER(lighting_evaluations)
+    PASSIM_COUNTER(texgen_evaluations)
+    PASSIM_COUNTER(texture_lookups)
+    PASSIM_COUNTER(texels_fetched)
+    PASSIM_COUNTER(texture_bits_read)
+    PASSIM_COUNTER(texture_bits_written)
+    PASSIM_COUNTER(fog_operations)
     PASSIM_COUNTER(fragments_generated)
     PASSIM_COUNTER(killed_scissor)
     PASSIM_COUNTER(killed_alpha)

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "pipeline/fixed_point.hpp"
+#include "stages/pixel_unpack.hpp"
 
 namespace passim {
 
@@ -665,6 +666,7 @@ class Replayer {
           break;
         }
     }
+    if (p.count_rule == 'p') need = std::max<std::size_t>(need, 1);  // an unknown pname still reads one value
     if (v.count < need)
       fail(fmt::format("{}: argument {} needs {} values, the trace gives {}", info.name, index + 1, need, v.count));
     return v;
@@ -702,6 +704,12 @@ class Replayer {
     ensure_context();
     Context& ctx = *result_.context;
     ctx.set_source_location(fmt::format("{}:{}", name_, line_));
+    if (info->query) return;  // queries change nothing; their output arguments cannot be replayed
+    if ((fn == "glGenTextures" || fn == "glDeleteTextures") && values[0].i > 65536)
+      fail(fmt::format("{}: n = {} is above the 65536 names a trace may ask for at once", fn, values[0].i));
+    if (fn == "glDeleteTextures" && values[0].i > 0 && values[1].count < static_cast<std::size_t>(values[0].i))
+      fail(fmt::format("glDeleteTextures: n is {} but {} names are given", values[0].i, values[1].count));
+    check_image_data(fn, values, ctx);
     try {
       info->invoke(ctx, values);
     } catch (const ClientDataError& e) {
@@ -717,6 +725,24 @@ class Replayer {
       keep_alive_.push_back(data.bytes);
     }
     report_errors();
+  }
+
+  // Image data must hold every byte the call will read under the current unpack modes.
+  void check_image_data(const std::string& fn, const std::vector<Value>& v, const Context& ctx) {
+    int w = 0, h = 1;
+    std::size_t format = 0, type = 0, data = 0;
+    if (fn == "glTexImage1D") { w = static_cast<int>(v[3].i); format = 5; type = 6; data = 7; }
+    else if (fn == "glTexImage2D") { w = static_cast<int>(v[3].i); h = static_cast<int>(v[4].i); format = 6; type = 7; data = 8; }
+    else if (fn == "glTexSubImage1D") { w = static_cast<int>(v[3].i); format = 4; type = 5; data = 6; }
+    else if (fn == "glTexSubImage2D") { w = static_cast<int>(v[4].i); h = static_cast<int>(v[5].i); format = 6; type = 7; data = 8; }
+    else return;
+    const GLenum f = static_cast<GLenum>(v[format].i), t = static_cast<GLenum>(v[type].i);
+    if (!v[data].bytes || v[data].count == 0 || w <= 0 || h <= 0 || format_components(f) == 0 || !is_pixel_type(t))
+      return;  // no data, or a call the GL rejects before reading
+    const std::size_t need = image_bytes(w, h, f, t, ctx.unpack_store());
+    if (v[data].bytes->size() < need)
+      fail(fmt::format("{}: the image needs {} bytes under the current unpack modes, the trace gives {}", fn, need,
+                       v[data].bytes->size()));
   }
 
   void report_errors() {

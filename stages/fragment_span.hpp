@@ -13,17 +13,30 @@ struct FragmentSpan {
   std::uint16_t* rgba = nullptr;  // 4 codes per fragment at the fragment colour widths
   std::uint32_t* depth = nullptr;  // window z codes at the depth-plane width
   std::uint8_t* live = nullptr;    // scratch for the fragment operations
+  // Texture coordinates s/q, t/q, r/q and level of detail λ (set when texturing is on).
+  double* s = nullptr;
+  double* t = nullptr;
+  double* r = nullptr;
+  double* lambda = nullptr;
 };
 
 // Storage for one span of up to `max_width` fragments.
 struct SpanBuffers {
   explicit SpanBuffers(int max_width)
-      : rgba(4 * static_cast<std::size_t>(max_width)), depth(max_width), live(max_width) {}
+      : rgba(4 * static_cast<std::size_t>(max_width)),
+        depth(max_width),
+        live(max_width),
+        s(max_width),
+        t(max_width),
+        r(max_width),
+        lambda(max_width) {}
   std::vector<std::uint16_t> rgba;
   std::vector<std::uint32_t> depth;
   std::vector<std::uint8_t> live;
+  std::vector<double> s, t, r, lambda;
   FragmentSpan span(int y, int x0, int count) {
-    return FragmentSpan{y, x0, count, rgba.data(), depth.data(), live.data()};
+    return FragmentSpan{y, x0, count, rgba.data(), depth.data(), live.data(), s.data(), t.data(), r.data(),
+                        lambda.data()};
   }
 };
 

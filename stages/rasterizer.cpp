@@ -52,6 +52,39 @@ std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits) {
   return 2 * static_cast<std::int64_t>(round_half_up(window_coordinate * scale));
 }
 
+namespace {
+
+// s/q, t/q, r/q and (optionally) λ for the fragments of a span (eq. 3.4, eq. 3.15).
+void texture_coordinates(const Plane tex[4], const PlaneSetup& setup, double cy, int x0, int n,
+                         const TriangleOptions& o, FragmentSpan& span) {
+  double row[4];
+  for (int k = 0; k < 4; ++k) row[k] = tex[k].at_row(cy, setup.y0);
+  for (int i = 0; i < n; ++i) {
+    const double dx = (static_cast<double>(x0 + i) + 0.5) - setup.x0;
+    double a[4];
+    for (int k = 0; k < 4; ++k) a[k] = row[k] + tex[k].dfdx * dx;
+    const double q = a[3];
+    span.s[i] = a[0] / q;
+    span.t[i] = a[1] / q;
+    span.r[i] = a[2] / q;
+    if (o.lod) {
+      // ∂(a/q)/∂x = (a_x·q − a·q_x)/q², likewise for y; u = W·s, v = H·t;
+      // ρ = max(‖(∂u/∂x, ∂v/∂x)‖, ‖(∂u/∂y, ∂v/∂y)‖), λ = log2 ρ clamped to [MIN_LOD, MAX_LOD].
+      const double q2 = q * q;
+      const double dudx = o.lod_width * (tex[0].dfdx * q - a[0] * tex[3].dfdx) / q2;
+      const double dvdx = o.lod_height * (tex[1].dfdx * q - a[1] * tex[3].dfdx) / q2;
+      const double dudy = o.lod_width * (tex[0].dfdy * q - a[0] * tex[3].dfdy) / q2;
+      const double dvdy = o.lod_height * (tex[1].dfdy * q - a[1] * tex[3].dfdy) / q2;
+      const double rho = std::max(std::sqrt(dudx * dudx + dvdx * dvdx), std::sqrt(dudy * dudy + dvdy * dvdy));
+      span.lambda[i] = std::clamp(std::log2(rho), o.min_lod, o.max_lod);
+    } else {
+      span.lambda[i] = 0.0;
+    }
+  }
+}
+
+}  // namespace
+
 void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
                         FragmentSink& sink, Counters& counters) {
@@ -131,6 +164,14 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       c_plane[k] = setup.plane(v[0]->color[k] * q0, v[1]->color[k] * q1, v[2]->color[k] * q2);
   }
 
+  // Texture coordinates: planes of s/w, t/w, r/w and q/w; the fragment's s/q is their ratio.
+  Plane tex_plane[4];
+  if (options.texcoords) {
+    for (int k = 0; k < 4; ++k) {
+      const double w0 = 1.0 / v[0]->w, w1 = 1.0 / v[1]->w, w2 = 1.0 / v[2]->w;
+      tex_plane[k] = setup.plane(v[0]->tex[k] * w0, v[1]->tex[k] * w1, v[2]->tex[k] * w2);
+    }
+  }
   const double depth_scale = static_cast<double>(max_code(target.depth_bits));
   double color_scale[4];
   for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
@@ -169,6 +210,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       for (int k = 0; k < 4; ++k) c[k] = SpanPlane{c_plane[k].at_row(cy, setup.y0), c_plane[k].dfdx};
       color_codes(SpanPlane{q_plane.at_row(cy, setup.y0), q_plane.dfdx}, c, color_scale, x0, setup.x0, n, span.rgba);
     }
+    if (options.texcoords) texture_coordinates(tex_plane, setup, cy, x0, n, options, span);
     sink.process(span);
   }
 }
@@ -199,6 +241,10 @@ void rasterize_point(const RasterVertex& v, double size, const RasterTarget& tar
     for (int i = 0; i < n; ++i) {
       span.depth[i] = z;
       for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = codes[k];
+      span.s[i] = v.tex[0] / v.tex[3];
+      span.t[i] = v.tex[1] / v.tex[3];
+      span.r[i] = v.tex[2] / v.tex[3];
+      span.lambda[i] = 0.0;
     }
     sink.process(span);
   }

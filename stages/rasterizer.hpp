@@ -16,6 +16,7 @@ struct RasterVertex {
   double x = 0.0, y = 0.0, z = 0.0;  // window coordinates, z in [0, 1]
   double w = 1.0;                    // clip w, for perspective correction
   Vec4 color{};                      // clamped, quantised colour
+  Vec4 tex{0.0, 0.0, 0.0, 1.0};      // texture coordinates (s, t, r, q)
 };
 
 struct RasterTarget {
@@ -30,6 +31,10 @@ struct TriangleOptions {
   Vec4 flat_color{};
   bool offset = false;
   double offset_factor = 0.0, offset_units = 0.0;
+  bool texcoords = false;  // interpolate s/q, t/q, r/q (eq. 3.4 with α = q)
+  bool lod = false;        // also compute λ (§3.8.5, eq. 3.15) for a base level of lod_width x lod_height
+  double lod_width = 1.0, lod_height = 1.0;
+  double min_lod = -1000.0, max_lod = 1000.0;
 };
 
 // The fixed-point coordinate of a window coordinate: round(x · 2^subpixel_bits), doubled so
@@ -41,6 +46,7 @@ void rasterize_triangle(const RasterVertex& v0, const RasterVertex& v1, const Ra
                         FragmentSink& sink, Counters& counters);
 
 // Non-antialiased point of the given size (§3.3.1).
+// Point fragments take the vertex's s/q, t/q, r/q and λ = 0 (ρ = 1).
 void rasterize_point(const RasterVertex& v, double size, const RasterTarget& target, SpanBuffers& buffers,
                      FragmentSink& sink, Counters& counters);
 

@@ -1,0 +1,674 @@
+// Context: pixel storage (§3.6.1) and texturing (§3.8): texture objects and images,
+// parameters, environment and coordinate generation. Sampling lives in
+// stages/texture_sample.cpp, the environment in stages/texture_env.cpp.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/context.hpp"
+#include "pipeline/context_scratch.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "stages/pixel_pack.hpp"
+#include "stages/texture_sample.hpp"
+
+namespace passim {
+
+// ---------------------------------------------------------------- pixel storage
+
+void Context::glPixelStorei(GLenum pname, GLint param) {
+  PASSIM_ENTRY(pname, param)
+  PixelStore* s = nullptr;
+  switch (pname) {
+    case GL_PACK_SWAP_BYTES: case GL_PACK_LSB_FIRST: case GL_PACK_ROW_LENGTH: case GL_PACK_SKIP_ROWS:
+    case GL_PACK_SKIP_PIXELS: case GL_PACK_ALIGNMENT: s = &pixel_store_.pack; break;
+    case GL_UNPACK_SWAP_BYTES: case GL_UNPACK_LSB_FIRST: case GL_UNPACK_ROW_LENGTH: case GL_UNPACK_SKIP_ROWS:
+    case GL_UNPACK_SKIP_PIXELS: case GL_UNPACK_ALIGNMENT: s = &pixel_store_.unpack; break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+  switch (pname) {
+    case GL_PACK_SWAP_BYTES: case GL_UNPACK_SWAP_BYTES: s->swap_bytes = param != 0; break;
+    case GL_PACK_LSB_FIRST: case GL_UNPACK_LSB_FIRST: s->lsb_first = param != 0; break;
+    case GL_PACK_ALIGNMENT: case GL_UNPACK_ALIGNMENT:
+      if (param != 1 && param != 2 && param != 4 && param != 8) return set_error(GL_INVALID_VALUE);
+      s->alignment = param;
+      break;
+    default:
+      if (param < 0) return set_error(GL_INVALID_VALUE);
+      if (pname == GL_PACK_ROW_LENGTH || pname == GL_UNPACK_ROW_LENGTH) s->row_length = param;
+      else if (pname == GL_PACK_SKIP_ROWS || pname == GL_UNPACK_SKIP_ROWS) s->skip_rows = param;
+      else s->skip_pixels = param;
+      break;
+  }
+}
+
+void Context::glPixelStoref(GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(pname, param)
+  // §3.6.1: a float parameter is rounded to the nearest integer (booleans: nonzero is true).
+  glPixelStorei(pname, static_cast<GLint>(round_half_up(clamp_nan_low(param, -2147483648.0, 2147483647.0))));
+}
+
+// ---------------------------------------------------------------- texture objects (§3.8.12)
+
+TextureObject* Context::texture_for(GLenum target) {
+  if (target == GL_TEXTURE_1D)
+    return textures_.bound_1d ? &textures_.objects[textures_.bound_1d] : &textures_.default_1d;
+  if (target == GL_TEXTURE_2D)
+    return textures_.bound_2d ? &textures_.objects[textures_.bound_2d] : &textures_.default_2d;
+  return nullptr;
+}
+
+const TextureObject* Context::bound_texture(GLenum target) const {
+  return const_cast<Context*>(this)->texture_for(target);
+}
+
+void Context::glGenTextures(GLsizei n, GLuint* textures) {
+  PASSIM_ENTRY(n)
+  if (n < 0) return set_error(GL_INVALID_VALUE);
+  GLuint next = 1;
+  for (GLsizei k = 0; k < n; ++k) {
+    while (textures_.reserved.count(next) || textures_.objects.count(next)) ++next;
+    textures_.reserved[next] = true;
+    textures[k] = next;
+  }
+}
+
+void Context::glDeleteTextures(GLsizei n, const GLuint* textures) {
+  PASSIM_ENTRY(n, ArrayArg<GLuint>{textures, n > 0 ? static_cast<std::size_t>(n) : 0u})
+  if (n < 0) return set_error(GL_INVALID_VALUE);
+  for (GLsizei k = 0; k < n; ++k) {
+    const GLuint name = textures[k];
+    if (name == 0) continue;
+    // §3.8.12: a deleted bound texture reverts the binding to 0.
+    if (textures_.bound_1d == name) textures_.bound_1d = 0;
+    if (textures_.bound_2d == name) textures_.bound_2d = 0;
+    textures_.objects.erase(name);
+    textures_.reserved.erase(name);
+  }
+}
+
+void Context::glBindTexture(GLenum target, GLuint texture) {
+  PASSIM_ENTRY(target, texture)
+  if (target != GL_TEXTURE_1D && target != GL_TEXTURE_2D) return set_error(GL_INVALID_ENUM);
+  if (texture != 0) {
+    auto it = textures_.objects.find(texture);
+    if (it != textures_.objects.end() && it->second.target != target) return set_error(GL_INVALID_OPERATION);
+    if (it == textures_.objects.end()) textures_.objects[texture].target = target;
+  }
+  (target == GL_TEXTURE_1D ? textures_.bound_1d : textures_.bound_2d) = texture;
+}
+
+GLboolean Context::glIsTexture(GLuint texture) {
+  PASSIM_ENTRY_RET(GL_FALSE, texture)
+  return texture != 0 && textures_.objects.count(texture) ? GL_TRUE : GL_FALSE;
+}
+
+// ---------------------------------------------------------------- images (§3.8.1-3.8.3)
+
+namespace {
+
+bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
+
+bool is_texture_format(GLenum format) {
+  switch (format) {
+    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_RGB: case GL_RGBA: case GL_BGR: case GL_BGRA:
+    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA: case GL_DEPTH_COMPONENT:
+      return true;
+    default: return false;
+  }
+}
+
+int log2_floor(int v) {
+  int l = 0;
+  while (v > 1) {
+    v >>= 1;
+    ++l;
+  }
+  return l;
+}
+
+// Table 3.15: the codes kept for a base format, from a clamped RGBA group.
+void texel_codes(const InternalFormat& f, const Rgba& c, std::uint32_t* out) {
+  auto q = [](double v, int bits) { return float_to_fixed(v, bits); };  // clamps to [0, 1], rounds (§3.8.1)
+  out[0] = out[1] = out[2] = out[3] = 0;
+  switch (f.base) {
+    case GL_ALPHA: out[3] = q(c[3], f.alpha); break;
+    case GL_LUMINANCE: out[0] = q(c[0], f.luminance); break;
+    case GL_LUMINANCE_ALPHA: out[0] = q(c[0], f.luminance); out[3] = q(c[3], f.alpha); break;
+    case GL_INTENSITY: out[0] = q(c[0], f.intensity); break;
+    case GL_RGB: out[0] = q(c[0], f.red); out[1] = q(c[1], f.green); out[2] = q(c[2], f.blue); break;
+    default:
+      out[0] = q(c[0], f.red);
+      out[1] = q(c[1], f.green);
+      out[2] = q(c[2], f.blue);
+      out[3] = q(c[3], f.alpha);
+      break;
+  }
+}
+
+int texel_bits(const InternalFormat& f) {
+  return f.red + f.green + f.blue + f.alpha + f.luminance + f.intensity + f.depth;
+}
+
+}  // namespace
+
+void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
+                           const std::vector<double>* depth) {
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t src = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+      std::uint32_t* dst = &level.texels[4 * (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(level.width) +
+                                              static_cast<std::size_t>(x0 + x))];
+      if (depth) {
+        dst[0] = float_to_fixed((*depth)[src], level.format.depth);
+        dst[1] = dst[2] = dst[3] = 0;
+      } else {
+        texel_codes(level.format, rgba[src], dst);
+      }
+    }
+  counters().texture_bits_written += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                                     static_cast<std::uint64_t>(texel_bits(level.format));
+}
+
+void Context::tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
+                        GLint border, GLenum format, GLenum type, const void* pixels) {
+  const GLenum want = dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D;
+  if (target != want) return set_error(GL_INVALID_ENUM);
+  const int max = profile_.limits.max_texture_size;
+  if (level < 0 || level > log2_floor(max)) return set_error(GL_INVALID_VALUE);
+  const auto fmt_info = internal_format(internalformat);
+  if (!fmt_info) return set_error(GL_INVALID_VALUE);
+  if (border != 0 && border != 1) return set_error(GL_INVALID_VALUE);
+  const int w = width - 2 * border, h = dims == 2 ? height - 2 * border : 1;
+  if (width < 0 || height < 0 || !is_power_of_two(w) || !is_power_of_two(h) || w > max || h > max)
+    return set_error(GL_INVALID_VALUE);
+  if (!is_texture_format(format)) return set_error(GL_INVALID_ENUM);
+  if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  if ((format == GL_DEPTH_COMPONENT) != (fmt_info->base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
+  TextureObject& tex = *texture_for(target);
+  tex.target = target;
+  if (tex.levels.size() <= static_cast<std::size_t>(level)) tex.levels.resize(static_cast<std::size_t>(level) + 1);
+  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  l.width = width;
+  l.height = dims == 2 ? height : 1;
+  l.border = border;
+  l.format = *fmt_info;
+  l.texels.assign(4 * static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height), 0);
+  if (!pixels) return;  // §3.8.1: a NULL image defines the level with unspecified contents (zeros here)
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
+  if (format == GL_DEPTH_COMPONENT) unpack_depth(pixels, l.width, l.height, type, pixel_store_.unpack, depth);
+  else unpack_rgba(pixels, l.width, l.height, format, type, pixel_store_.unpack, rgba);
+  store_texels(l, 0, 0, l.width, l.height, rgba, format == GL_DEPTH_COMPONENT ? &depth : nullptr);
+}
+
+void Context::glTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLint border, GLenum format,
+                           GLenum type, const void* pixels) {
+  PASSIM_ENTRY(target, level, internalformat, width, border, format, type,
+               RawArrayArg{pixels, type, pixels && width > 0 && format_components(format) > 0 && type_size(type) > 0
+                                             ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
+                                                   static_cast<std::size_t>(type_size(type))
+                                             : 0u})
+  tex_image(target, 1, level, internalformat, width, 1, border, format, type, pixels);
+}
+
+void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLsizei height,
+                           GLint border, GLenum format, GLenum type, const void* pixels) {
+  PASSIM_ENTRY(target, level, internalformat, width, height, border, format, type,
+               RawArrayArg{pixels, type,
+                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
+                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
+                                     static_cast<std::size_t>(type_size(type))
+                               : 0u})
+  tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
+}
+
+void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
+                            GLsizei height, GLenum format, GLenum type, const void* pixels) {
+  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
+  if (!is_texture_format(format) || !is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  TextureObject& tex = *texture_for(target);
+  if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined())
+    return set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
+  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  const int b = l.border;
+  if (width < 0 || height < 0 || xoffset < -b || xoffset + width > l.width - b ||
+      (dims == 2 && (yoffset < -b || yoffset + height > l.height - b)))
+    return set_error(GL_INVALID_VALUE);
+  if ((format == GL_DEPTH_COMPONENT) != (l.format.base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
+  if (width == 0 || height == 0 || !pixels) return;
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
+  if (format == GL_DEPTH_COMPONENT) unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
+  else unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
+  store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba,
+               format == GL_DEPTH_COMPONENT ? &depth : nullptr);
+}
+
+void Context::glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
+                              const void* pixels) {
+  PASSIM_ENTRY(target, level, xoffset, width, format, type,
+               RawArrayArg{pixels, type, pixels && width > 0 && format_components(format) > 0 && type_size(type) > 0
+                                             ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
+                                                   static_cast<std::size_t>(type_size(type))
+                                             : 0u})
+  tex_sub_image(target, 1, level, xoffset, 0, width, 1, format, type, pixels);
+}
+
+void Context::glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
+                              GLenum format, GLenum type, const void* pixels) {
+  PASSIM_ENTRY(target, level, xoffset, yoffset, width, height, format, type,
+               RawArrayArg{pixels, type,
+                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
+                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
+                                     static_cast<std::size_t>(type_size(type))
+                               : 0u})
+  tex_sub_image(target, 2, level, xoffset, yoffset, width, height, format, type, pixels);
+}
+
+void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const {
+  // §4.3.2: read-buffer codes as k/(2^n − 1), A = 1 without alpha bits; pixels outside the
+  // window are undefined: they read as 0 here.
+  const ColorPlane* plane = color_buffer(pixel_.read_buffer);
+  const auto& bits = fb_.config.color_bits;
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), Rgba{0, 0, 0, 0});
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const int px = x + i, py = y + j;
+      if (px < 0 || py < 0 || px >= fb_.width() || py >= fb_.height()) continue;
+      const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(px, py)];
+      Rgba& o = out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)];
+      for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = fixed_to_float(c[k], bits[k]);
+    }
+}
+
+void Context::read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const {
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const int px = x + i, py = y + j;
+      if (px < 0 || py < 0 || px >= fb_.width() || py >= fb_.height()) continue;
+      out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] =
+          fixed_to_float(fb_.depth[fb_.pixel_index(px, py)], fb_.config.depth_bits);
+    }
+}
+
+void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum internalformat, GLint x, GLint y,
+                             GLsizei width, GLsizei height, GLint border) {
+  const auto f = internal_format(static_cast<GLint>(internalformat));
+  // §3.8.2: internalformat 1-4 are not accepted by CopyTexImage.
+  if (f && internalformat >= 1 && internalformat <= 4) return set_error(GL_INVALID_VALUE);
+  if (f && f->base == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
+  const std::size_t errors = error_log_.size();
+  tex_image(target, dims, level, static_cast<GLint>(internalformat), width, height, border,
+            f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
+  if (error_log_.size() != errors) return;
+  TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
+  if (l.format.base == GL_DEPTH_COMPONENT) read_framebuffer_depth(x, y, l.width, l.height, depth);
+  else read_framebuffer_rgba(x, y, l.width, l.height, rgba);
+  Counters& c = counters();
+  c.color_bits_read += l.format.base == GL_DEPTH_COMPONENT ? 0u
+                       : static_cast<std::uint64_t>(l.width) * static_cast<std::uint64_t>(l.height) *
+                             static_cast<std::uint64_t>(fb_.config.color_bits[0] + fb_.config.color_bits[1] +
+                                                        fb_.config.color_bits[2] + fb_.config.color_bits[3]);
+  if (l.format.base == GL_DEPTH_COMPONENT)
+    c.depth_bits_read += static_cast<std::uint64_t>(l.width) * static_cast<std::uint64_t>(l.height) *
+                         static_cast<std::uint64_t>(fb_.config.depth_bits);
+  store_texels(l, 0, 0, l.width, l.height, rgba, l.format.base == GL_DEPTH_COMPONENT ? &depth : nullptr);
+}
+
+void Context::glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                               GLint border) {
+  PASSIM_ENTRY(target, level, internalformat, x, y, width, border)
+  copy_tex_image(target, 1, level, internalformat, x, y, width, 1, border);
+}
+
+void Context::glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                               GLsizei height, GLint border) {
+  PASSIM_ENTRY(target, level, internalformat, x, y, width, height, border)
+  copy_tex_image(target, 2, level, internalformat, x, y, width, height, border);
+}
+
+void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
+                                 GLsizei width, GLsizei height) {
+  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
+  TextureObject& tex = *texture_for(target);
+  if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined())
+    return set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
+  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  const int b = l.border;
+  if (width < 0 || height < 0 || xoffset < -b || xoffset + width > l.width - b ||
+      (dims == 2 && (yoffset < -b || yoffset + height > l.height - b)))
+    return set_error(GL_INVALID_VALUE);
+  if (width == 0 || height == 0) return;
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
+  const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
+  if (is_depth) read_framebuffer_depth(x, y, width, height, depth);
+  else read_framebuffer_rgba(x, y, width, height, rgba);
+  Counters& c = counters();
+  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  if (is_depth) c.depth_bits_read += n * static_cast<std::uint64_t>(fb_.config.depth_bits);
+  else
+    c.color_bits_read += n * static_cast<std::uint64_t>(fb_.config.color_bits[0] + fb_.config.color_bits[1] +
+                                                         fb_.config.color_bits[2] + fb_.config.color_bits[3]);
+  store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba, is_depth ? &depth : nullptr);
+}
+
+void Context::glCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei width) {
+  PASSIM_ENTRY(target, level, xoffset, x, y, width)
+  copy_tex_sub_image(target, 1, level, xoffset, 0, x, y, width, 1);
+}
+
+void Context::glCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
+                                  GLsizei width, GLsizei height) {
+  PASSIM_ENTRY(target, level, xoffset, yoffset, x, y, width, height)
+  copy_tex_sub_image(target, 2, level, xoffset, yoffset, x, y, width, height);
+}
+
+void Context::glGetTexImage(GLenum target, GLint level, GLenum format, GLenum type, void* pixels) {
+  PASSIM_ENTRY()
+  TextureObject* tex = texture_for(target);
+  if (!tex) return set_error(GL_INVALID_ENUM);
+  if (!is_texture_format(format) || !is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  if (level < 0 || static_cast<std::size_t>(level) >= tex->levels.size() || !tex->levels[level].defined())
+    return set_error(GL_INVALID_VALUE);
+  const TextureLevel& l = tex->levels[static_cast<std::size_t>(level)];
+  if ((format == GL_DEPTH_COMPONENT) != (l.format.base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
+  // §6.1.4 (A13): no pixel transfer; texel components as RGBA (L in R, I in R, D in R).
+  std::vector<Rgba> out(static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height));
+  const InternalFormat& f = l.format;
+  for (std::size_t p = 0; p < out.size(); ++p) {
+    const std::uint32_t* t = &l.texels[4 * p];
+    switch (f.base) {
+      case GL_ALPHA: out[p] = {0, 0, 0, fixed_to_float(t[3], f.alpha)}; break;
+      case GL_LUMINANCE: out[p] = {fixed_to_float(t[0], f.luminance), 0, 0, 1}; break;
+      case GL_LUMINANCE_ALPHA: out[p] = {fixed_to_float(t[0], f.luminance), 0, 0, fixed_to_float(t[3], f.alpha)}; break;
+      case GL_INTENSITY: out[p] = {fixed_to_float(t[0], f.intensity), 0, 0, 1}; break;
+      case GL_DEPTH_COMPONENT: out[p] = {fixed_to_float(t[0], f.depth), 0, 0, 1}; break;
+      case GL_RGB:
+        out[p] = {fixed_to_float(t[0], f.red), fixed_to_float(t[1], f.green), fixed_to_float(t[2], f.blue), 1};
+        break;
+      default:
+        out[p] = {fixed_to_float(t[0], f.red), fixed_to_float(t[1], f.green), fixed_to_float(t[2], f.blue),
+                  fixed_to_float(t[3], f.alpha)};
+        break;
+    }
+  }
+  pack_rgba(out, l.width, l.height, format, type, pixel_store_.pack, pixels);
+}
+
+// ---------------------------------------------------------------- parameters (§3.8.4)
+
+void Context::set_tex_parameter(GLenum target, GLenum pname, const double* v) {
+  TextureObject* tex = texture_for(target);
+  if (!tex) return set_error(GL_INVALID_ENUM);
+  const GLenum e = static_cast<GLenum>(v[0]);
+  auto is_wrap = [](GLenum m) { return m == GL_REPEAT || m == GL_CLAMP || m == GL_CLAMP_TO_EDGE; };
+  switch (pname) {
+    case GL_TEXTURE_MIN_FILTER:
+      if (e != GL_NEAREST && e != GL_LINEAR && e != GL_NEAREST_MIPMAP_NEAREST && e != GL_LINEAR_MIPMAP_NEAREST &&
+          e != GL_NEAREST_MIPMAP_LINEAR && e != GL_LINEAR_MIPMAP_LINEAR)
+        return set_error(GL_INVALID_ENUM);
+      tex->min_filter = e;
+      break;
+    case GL_TEXTURE_MAG_FILTER:
+      if (e != GL_NEAREST && e != GL_LINEAR) return set_error(GL_INVALID_ENUM);
+      tex->mag_filter = e;
+      break;
+    case GL_TEXTURE_WRAP_S: case GL_TEXTURE_WRAP_T: case GL_TEXTURE_WRAP_R:
+      if (!is_wrap(e)) return set_error(GL_INVALID_ENUM);
+      (pname == GL_TEXTURE_WRAP_S ? tex->wrap_s : pname == GL_TEXTURE_WRAP_T ? tex->wrap_t : tex->wrap_r) = e;
+      break;
+    case GL_TEXTURE_BORDER_COLOR:
+      tex->border_color = Vec4(clamp_nan_low(v[0], 0, 1), clamp_nan_low(v[1], 0, 1), clamp_nan_low(v[2], 0, 1),
+                               clamp_nan_low(v[3], 0, 1));
+      break;
+    case GL_TEXTURE_MIN_LOD: tex->min_lod = v[0]; break;
+    case GL_TEXTURE_MAX_LOD: tex->max_lod = v[0]; break;
+    case GL_TEXTURE_BASE_LEVEL:
+      if (v[0] < 0) return set_error(GL_INVALID_VALUE);
+      tex->base_level = static_cast<int>(v[0]);
+      break;
+    case GL_TEXTURE_MAX_LEVEL:
+      if (v[0] < 0) return set_error(GL_INVALID_VALUE);
+      tex->max_level = static_cast<int>(v[0]);
+      break;
+    case GL_TEXTURE_PRIORITY: tex->priority = clamp_nan_low(v[0], 0, 1); break;
+    case GL_TEXTURE_COMPARE_SGIX: tex->compare_sgix = v[0] != 0.0; break;
+    case GL_TEXTURE_COMPARE_OPERATOR_SGIX:
+      if (e != GL_TEXTURE_LEQUAL_R_SGIX && e != GL_TEXTURE_GEQUAL_R_SGIX) return set_error(GL_INVALID_ENUM);
+      tex->compare_operator_sgix = e;
+      break;
+    case GL_SHADOW_AMBIENT_SGIX: tex->shadow_ambient = clamp_nan_low(v[0], 0, 1); break;
+    case GL_TEXTURE_COMPARE_MODE:
+      if (e != GL_NONE && e != GL_COMPARE_R_TO_TEXTURE) return set_error(GL_INVALID_ENUM);
+      tex->compare_mode = e;
+      break;
+    case GL_TEXTURE_COMPARE_FUNC:
+      if (e != GL_LEQUAL && e != GL_GEQUAL) return set_error(GL_INVALID_ENUM);
+      tex->compare_func = e;
+      break;
+    case GL_DEPTH_TEXTURE_MODE:
+      if (e != GL_LUMINANCE && e != GL_INTENSITY && e != GL_ALPHA) return set_error(GL_INVALID_ENUM);
+      tex->depth_texture_mode = e;
+      break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glTexParameteri(GLenum target, GLenum pname, GLint param) {
+  PASSIM_ENTRY(target, pname, param)
+  if (pname == GL_TEXTURE_BORDER_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_parameter(target, pname, v);
+}
+
+void Context::glTexParameterf(GLenum target, GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(target, pname, param)
+  if (pname == GL_TEXTURE_BORDER_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_parameter(target, pname, v);
+}
+
+void Context::glTexParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
+  const int n = pname == GL_TEXTURE_BORDER_COLOR ? 4 : 1;
+  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_tex_parameter(target, pname, v);
+}
+
+void Context::glGetTexParameterfv(GLenum target, GLenum pname, GLfloat* params) {
+  PASSIM_ENTRY()
+  const TextureObject* tex = texture_for(target);
+  if (!tex) return set_error(GL_INVALID_ENUM);
+  switch (pname) {
+    case GL_TEXTURE_MIN_FILTER: params[0] = static_cast<GLfloat>(tex->min_filter); break;
+    case GL_TEXTURE_MAG_FILTER: params[0] = static_cast<GLfloat>(tex->mag_filter); break;
+    case GL_TEXTURE_WRAP_S: params[0] = static_cast<GLfloat>(tex->wrap_s); break;
+    case GL_TEXTURE_WRAP_T: params[0] = static_cast<GLfloat>(tex->wrap_t); break;
+    case GL_TEXTURE_WRAP_R: params[0] = static_cast<GLfloat>(tex->wrap_r); break;
+    case GL_TEXTURE_BORDER_COLOR:
+      for (int k = 0; k < 4; ++k) params[k] = static_cast<GLfloat>(tex->border_color[k]);
+      break;
+    case GL_TEXTURE_MIN_LOD: params[0] = static_cast<GLfloat>(tex->min_lod); break;
+    case GL_TEXTURE_MAX_LOD: params[0] = static_cast<GLfloat>(tex->max_lod); break;
+    case GL_TEXTURE_BASE_LEVEL: params[0] = static_cast<GLfloat>(tex->base_level); break;
+    case GL_TEXTURE_MAX_LEVEL: params[0] = static_cast<GLfloat>(tex->max_level); break;
+    case GL_TEXTURE_PRIORITY: params[0] = static_cast<GLfloat>(tex->priority); break;
+    case GL_TEXTURE_RESIDENT: params[0] = 1.0f; break;
+    case GL_TEXTURE_COMPARE_SGIX: params[0] = tex->compare_sgix ? 1.0f : 0.0f; break;
+    case GL_TEXTURE_COMPARE_OPERATOR_SGIX: params[0] = static_cast<GLfloat>(tex->compare_operator_sgix); break;
+    case GL_SHADOW_AMBIENT_SGIX: params[0] = static_cast<GLfloat>(tex->shadow_ambient); break;
+    case GL_TEXTURE_COMPARE_MODE: params[0] = static_cast<GLfloat>(tex->compare_mode); break;
+    case GL_TEXTURE_COMPARE_FUNC: params[0] = static_cast<GLfloat>(tex->compare_func); break;
+    case GL_DEPTH_TEXTURE_MODE: params[0] = static_cast<GLfloat>(tex->depth_texture_mode); break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glGetTexParameteriv(GLenum target, GLenum pname, GLint* params) {
+  PASSIM_ENTRY()
+  GLfloat v[4] = {0, 0, 0, 0};
+  const std::size_t errors = error_log_.size();
+  glGetTexParameterfv(target, pname, v);
+  if (error_log_.size() != errors) return;
+  const int n = pname == GL_TEXTURE_BORDER_COLOR ? 4 : 1;
+  for (int k = 0; k < n; ++k)
+    params[k] = pname == GL_TEXTURE_BORDER_COLOR ? static_cast<GLint>(round_half_up(v[k] * 2147483647.0))
+                                                 : static_cast<GLint>(round_half_up(v[k]));
+}
+
+void Context::glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname, GLint* params) {
+  PASSIM_ENTRY()
+  const TextureObject* tex = texture_for(target);
+  if (!tex) return set_error(GL_INVALID_ENUM);
+  if (level < 0) return set_error(GL_INVALID_VALUE);
+  TextureLevel empty;
+  const TextureLevel& l = static_cast<std::size_t>(level) < tex->levels.size() ? tex->levels[level] : empty;
+  const InternalFormat& f = l.format;
+  switch (pname) {
+    case GL_TEXTURE_WIDTH: params[0] = l.width; break;
+    case GL_TEXTURE_HEIGHT: params[0] = l.height; break;
+    case GL_TEXTURE_BORDER: params[0] = l.border; break;
+    case GL_TEXTURE_INTERNAL_FORMAT: params[0] = l.defined() ? static_cast<GLint>(f.requested) : 1; break;
+    case GL_TEXTURE_RED_SIZE: params[0] = f.red; break;
+    case GL_TEXTURE_GREEN_SIZE: params[0] = f.green; break;
+    case GL_TEXTURE_BLUE_SIZE: params[0] = f.blue; break;
+    case GL_TEXTURE_ALPHA_SIZE: params[0] = f.alpha; break;
+    case GL_TEXTURE_LUMINANCE_SIZE: params[0] = f.luminance; break;
+    case GL_TEXTURE_INTENSITY_SIZE: params[0] = f.intensity; break;
+    case GL_TEXTURE_DEPTH_SIZE: params[0] = f.depth; break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+// ---------------------------------------------------------------- environment (§3.8.9)
+
+void Context::set_tex_env(GLenum target, GLenum pname, const double* v) {
+  if (target != GL_TEXTURE_ENV) return set_error(GL_INVALID_ENUM);
+  if (pname == GL_TEXTURE_ENV_MODE) {
+    const GLenum m = static_cast<GLenum>(v[0]);
+    if (m != GL_MODULATE && m != GL_DECAL && m != GL_BLEND && m != GL_REPLACE && m != GL_ADD)
+      return set_error(GL_INVALID_ENUM);
+    textures_.env_mode = m;
+  } else if (pname == GL_TEXTURE_ENV_COLOR) {
+    textures_.env_color = Vec4(clamp_nan_low(v[0], 0, 1), clamp_nan_low(v[1], 0, 1), clamp_nan_low(v[2], 0, 1),
+                               clamp_nan_low(v[3], 0, 1));
+  } else {
+    set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glTexEnvi(GLenum target, GLenum pname, GLint param) {
+  PASSIM_ENTRY(target, pname, param)
+  if (pname == GL_TEXTURE_ENV_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_env(target, pname, v);
+}
+
+void Context::glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(target, pname, param)
+  if (pname == GL_TEXTURE_ENV_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_env(target, pname, v);
+}
+
+void Context::glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
+  const int n = pname == GL_TEXTURE_ENV_COLOR ? 4 : 1;
+  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_tex_env(target, pname, v);
+}
+
+// ---------------------------------------------------------------- coordinate generation (§2.10.4)
+
+void Context::set_tex_gen(GLenum coord, GLenum pname, const double* v) {
+  if (coord < GL_S || coord > GL_Q) return set_error(GL_INVALID_ENUM);
+  TexGenState& g = textures_.gen[coord - GL_S];
+  switch (pname) {
+    case GL_TEXTURE_GEN_MODE: {
+      const GLenum m = static_cast<GLenum>(v[0]);
+      if (m != GL_OBJECT_LINEAR && m != GL_EYE_LINEAR && m != GL_SPHERE_MAP) return set_error(GL_INVALID_ENUM);
+      if (m == GL_SPHERE_MAP && (coord == GL_R || coord == GL_Q)) return set_error(GL_INVALID_ENUM);
+      g.mode = m;
+      break;
+    }
+    case GL_OBJECT_PLANE: g.object_plane = Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_EYE_PLANE:
+      // The plane is transformed by the inverse modelview at this call: p' = p·M⁻¹.
+      g.eye_plane = Vec4(v[0], v[1], v[2], v[3]) * glm::inverse(transform_.modelview.back());
+      break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glTexGeni(GLenum coord, GLenum pname, GLint param) {
+  PASSIM_ENTRY(coord, pname, param)
+  if (pname != GL_TEXTURE_GEN_MODE) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_gen(coord, pname, v);
+}
+
+void Context::glTexGenf(GLenum coord, GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(coord, pname, param)
+  if (pname != GL_TEXTURE_GEN_MODE) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_tex_gen(coord, pname, v);
+}
+
+void Context::glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params) {
+  const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
+  PASSIM_ENTRY(coord, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_tex_gen(coord, pname, v);
+}
+
+void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
+  const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
+  PASSIM_ENTRY(coord, pname, ArrayArg<GLdouble>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_tex_gen(coord, pname, v);
+}
+
+// ---------------------------------------------------------------- per primitive
+
+void Context::prepare_texturing(TriangleOptions& options) {
+  texture_active_ = false;
+  options.texcoords = false;
+  options.lod = false;
+  if (!texturing_enabled_) return;
+  // §3.8.15: TEXTURE_2D takes precedence over TEXTURE_1D; an incomplete texture disables texturing.
+  const GLenum target = textures_.enabled_2d ? GL_TEXTURE_2D : GL_TEXTURE_1D;
+  const int dims = target == GL_TEXTURE_2D ? 2 : 1;
+  const TextureObject& tex = *texture_for(target);
+  const int last = texture_complete_levels(tex, dims);
+  if (last < 0) {
+    warn_once(fmt::format("{} is enabled but its texture is incomplete: texturing is disabled (§3.8.10)",
+                          enum_name(target)));
+    return;
+  }
+  const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
+  options.texcoords = true;
+  options.lod = texture_needs_lod(tex);
+  options.lod_width = base.width - 2 * base.border;
+  options.lod_height = dims == 2 ? base.height - 2 * base.border : 1;
+  options.min_lod = tex.min_lod;
+  options.max_lod = tex.max_lod;
+  scratch_->texture_stage.configure(
+      TextureStageSetup{&tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_});
+  texture_active_ = true;
+}
+
+FragmentSink& Context::fragment_sink() {
+  if (texture_active_) return scratch_->texture_stage;
+  return scratch_->fragment_ops;
+}
+
+}  // namespace passim

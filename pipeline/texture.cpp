@@ -1,0 +1,69 @@
+#include "pipeline/texture.hpp"
+
+namespace passim {
+
+std::optional<InternalFormat> internal_format(GLint f, int u) {
+  InternalFormat r;
+  r.requested = static_cast<GLenum>(f);
+  auto rgba = [&](GLenum base, int R, int G, int B, int A) {
+    r.base = base;
+    r.red = R;
+    r.green = G;
+    r.blue = B;
+    r.alpha = A;
+    return r;
+  };
+  auto la = [&](GLenum base, int L, int A) {
+    r.base = base;
+    r.luminance = L;
+    r.alpha = A;
+    return r;
+  };
+  switch (static_cast<GLenum>(f)) {
+    case 1: case GL_LUMINANCE: return la(GL_LUMINANCE, u, 0);
+    case 2: case GL_LUMINANCE_ALPHA: return la(GL_LUMINANCE_ALPHA, u, u);
+    case 3: case GL_RGB: return rgba(GL_RGB, u, u, u, 0);
+    case 4: case GL_RGBA: return rgba(GL_RGBA, u, u, u, u);
+    case GL_ALPHA: return la(GL_ALPHA, 0, u);
+    case GL_INTENSITY: r.base = GL_INTENSITY; r.intensity = u; return r;
+    case GL_ALPHA4: return la(GL_ALPHA, 0, 4);
+    case GL_ALPHA8: return la(GL_ALPHA, 0, 8);
+    case GL_ALPHA12: return la(GL_ALPHA, 0, 12);
+    case GL_ALPHA16: return la(GL_ALPHA, 0, 16);
+    case GL_LUMINANCE4: return la(GL_LUMINANCE, 4, 0);
+    case GL_LUMINANCE8: return la(GL_LUMINANCE, 8, 0);
+    case GL_LUMINANCE12: return la(GL_LUMINANCE, 12, 0);
+    case GL_LUMINANCE16: return la(GL_LUMINANCE, 16, 0);
+    case GL_LUMINANCE4_ALPHA4: return la(GL_LUMINANCE_ALPHA, 4, 4);
+    case GL_LUMINANCE6_ALPHA2: return la(GL_LUMINANCE_ALPHA, 6, 2);
+    case GL_LUMINANCE8_ALPHA8: return la(GL_LUMINANCE_ALPHA, 8, 8);
+    case GL_LUMINANCE12_ALPHA4: return la(GL_LUMINANCE_ALPHA, 12, 4);
+    case GL_LUMINANCE12_ALPHA12: return la(GL_LUMINANCE_ALPHA, 12, 12);
+    case GL_LUMINANCE16_ALPHA16: return la(GL_LUMINANCE_ALPHA, 16, 16);
+    case GL_INTENSITY4: r.base = GL_INTENSITY; r.intensity = 4; return r;
+    case GL_INTENSITY8: r.base = GL_INTENSITY; r.intensity = 8; return r;
+    case GL_INTENSITY12: r.base = GL_INTENSITY; r.intensity = 12; return r;
+    case GL_INTENSITY16: r.base = GL_INTENSITY; r.intensity = 16; return r;
+    case GL_R3_G3_B2: return rgba(GL_RGB, 3, 3, 2, 0);
+    case GL_RGB4: return rgba(GL_RGB, 4, 4, 4, 0);
+    case GL_RGB5: return rgba(GL_RGB, 5, 5, 5, 0);
+    case GL_RGB8: return rgba(GL_RGB, 8, 8, 8, 0);
+    case GL_RGB10: return rgba(GL_RGB, 10, 10, 10, 0);
+    case GL_RGB12: return rgba(GL_RGB, 12, 12, 12, 0);
+    case GL_RGB16: return rgba(GL_RGB, 16, 16, 16, 0);
+    case GL_RGBA2: return rgba(GL_RGBA, 2, 2, 2, 2);
+    case GL_RGBA4: return rgba(GL_RGBA, 4, 4, 4, 4);
+    case GL_RGB5_A1: return rgba(GL_RGBA, 5, 5, 5, 1);
+    case GL_RGBA8: return rgba(GL_RGBA, 8, 8, 8, 8);
+    case GL_RGB10_A2: return rgba(GL_RGBA, 10, 10, 10, 2);
+    case GL_RGBA12: return rgba(GL_RGBA, 12, 12, 12, 12);
+    case GL_RGBA16: return rgba(GL_RGBA, 16, 16, 16, 16);
+    case GL_DEPTH_COMPONENT: r.base = GL_DEPTH_COMPONENT; r.depth = 24; return r;
+    case GL_DEPTH_COMPONENT16: r.base = GL_DEPTH_COMPONENT; r.depth = 16; return r;
+    case GL_DEPTH_COMPONENT24: r.base = GL_DEPTH_COMPONENT; r.depth = 24; return r;
+    case GL_DEPTH_COMPONENT32: r.base = GL_DEPTH_COMPONENT; r.depth = 32; return r;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace passim

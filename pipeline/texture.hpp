@@ -1,0 +1,57 @@
+// Texture objects and images (OpenGL 1.2.1 §3.8, SGIX_depth_texture, SGIX_shadow /
+// ARB_shadow). Texels are stored as integer codes at exactly the widths of the internal
+// format (Table 3.16), so a 12-bit value stored in RGBA8 loses its low bits as on hardware.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "pipeline/gl.hpp"
+#include "pipeline/state.hpp"
+
+namespace passim {
+
+// Table 3.15-3.16: base format and component widths of an internal format.
+struct InternalFormat {
+  GLenum requested = 0;  // as given to TexImage
+  GLenum base = 0;       // ALPHA, LUMINANCE, LUMINANCE_ALPHA, INTENSITY, RGB, RGBA, DEPTH_COMPONENT
+  // Widths of R, G, B, A, L, I, D (0 when absent).
+  int red = 0, green = 0, blue = 0, alpha = 0, luminance = 0, intensity = 0, depth = 0;
+};
+
+// Widths for an internal format; nullopt for a value TexImage does not accept.
+// Unsized formats get `unsized_bits` per component (A10: 8).
+std::optional<InternalFormat> internal_format(GLint internalformat, int unsized_bits = 8);
+
+struct TextureLevel {
+  int width = 0, height = 0, border = 0;  // width and height include the border
+  InternalFormat format;
+  // 4 codes per texel: R, G, B, A for colour bases; L in [0] (and A in [3]) for
+  // LUMINANCE(_ALPHA); I in [0] for INTENSITY; D in [0] for DEPTH_COMPONENT.
+  std::vector<std::uint32_t> texels;
+  bool defined() const { return width > 0 && height > 0; }
+};
+
+// Table 6.18 (texture objects).
+struct TextureObject {
+  GLenum target = 0;  // GL_TEXTURE_1D or GL_TEXTURE_2D (0 until first bound)
+  std::vector<TextureLevel> levels;
+  GLenum min_filter = GL_NEAREST_MIPMAP_LINEAR;
+  GLenum mag_filter = GL_LINEAR;
+  GLenum wrap_s = GL_REPEAT, wrap_t = GL_REPEAT, wrap_r = GL_REPEAT;
+  Vec4 border_color{0.0, 0.0, 0.0, 0.0};
+  double min_lod = -1000.0, max_lod = 1000.0;
+  int base_level = 0, max_level = 1000;
+  double priority = 1.0;
+  // Depth comparison: SGIX_shadow (compare, operator) and ARB_shadow (mode, func).
+  bool compare_sgix = false;
+  GLenum compare_operator_sgix = GL_TEXTURE_LEQUAL_R_SGIX;
+  GLenum compare_mode = GL_NONE;
+  GLenum compare_func = GL_LEQUAL;
+  GLenum depth_texture_mode = GL_LUMINANCE;
+  double shadow_ambient = 0.0;  // SGIX_shadow_ambient: the value of a failed comparison
+};
+
+}  // namespace passim

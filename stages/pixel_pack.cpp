@@ -1,0 +1,65 @@
+#include "stages/pixel_pack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "pipeline/calls.hpp"
+#include "pipeline/fixed_point.hpp"
+
+namespace passim {
+namespace {
+
+void store(std::byte* p, GLenum type, double f, bool swap) {
+  f = clamp_nan_low(f, 0.0, 1.0);
+  std::byte b[8];
+  auto put = [&](auto v) { std::memcpy(b, &v, sizeof(v)); };
+  switch (type) {
+    case GL_UNSIGNED_BYTE: put(static_cast<std::uint8_t>(round_half_up(255.0 * f))); break;
+    case GL_BYTE: put(static_cast<std::int8_t>(round_half_up((255.0 * f - 1.0) / 2.0))); break;
+    case GL_UNSIGNED_SHORT: put(static_cast<std::uint16_t>(round_half_up(65535.0 * f))); break;
+    case GL_SHORT: put(static_cast<std::int16_t>(round_half_up((65535.0 * f - 1.0) / 2.0))); break;
+    case GL_UNSIGNED_INT: put(static_cast<std::uint32_t>(round_half_up(4294967295.0 * f))); break;
+    case GL_INT: put(static_cast<std::int32_t>(round_half_up((4294967295.0 * f - 1.0) / 2.0))); break;
+    case GL_FLOAT: put(static_cast<float>(f)); break;
+    default: return;
+  }
+  const int size = type_size(type);
+  if (swap)
+    for (int i = 0; i < size / 2; ++i) std::swap(b[i], b[size - 1 - i]);
+  std::memcpy(p, b, static_cast<std::size_t>(size));
+}
+
+}  // namespace
+
+void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum format, GLenum type,
+               const PixelStore& s, void* out) {
+  const int n = format_components(format), size = type_size(type);
+  const std::size_t l = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
+  const std::size_t k = static_cast<std::size_t>(s.alignment), sz = static_cast<std::size_t>(size);
+  const std::size_t stride = sz >= k ? static_cast<std::size_t>(n) * l * sz
+                                     : k * ((sz * static_cast<std::size_t>(n) * l + k - 1) / k);
+  std::byte* base = static_cast<std::byte*>(out) + static_cast<std::size_t>(s.skip_rows) * stride +
+                    static_cast<std::size_t>(s.skip_pixels) * static_cast<std::size_t>(n * size);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const Rgba& c = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+      std::byte* p = base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size);
+      double v[4] = {0, 0, 0, 0};
+      switch (format) {
+        case GL_RED: case GL_LUMINANCE: case GL_DEPTH_COMPONENT: v[0] = c[0]; break;
+        case GL_GREEN: v[0] = c[1]; break;
+        case GL_BLUE: v[0] = c[2]; break;
+        case GL_ALPHA: v[0] = c[3]; break;
+        case GL_LUMINANCE_ALPHA: v[0] = c[0]; v[1] = c[3]; break;
+        case GL_RGB: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; break;
+        case GL_BGR: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; break;
+        case GL_BGRA: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; v[3] = c[3]; break;
+        default: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; v[3] = c[3]; break;
+      }
+      for (int m = 0; m < n; ++m) store(p + m * size, type, v[m], s.swap_bytes);
+    }
+}
+
+}  // namespace passim

@@ -1,0 +1,16 @@
+// Packing pixels into client memory (OpenGL 1.2.1 §4.3.2, Table 4.7): clamp to [0,1]
+// (1.2.1: for every type, FLOAT too, A17), convert (A18: round; signed types
+// round(((2^b−1)·f − 1)/2)), addressed by the pack pixel-store modes.
+#pragma once
+#include <vector>
+
+#include "stages/pixel_unpack.hpp"
+
+namespace passim {
+
+// Writes width x height RGBA groups (rows bottom first) as `format`/`type`. LUMINANCE is
+// R (GetTexImage of a luminance texture returns L in R), LUMINANCE_ALPHA is R and A.
+void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum format, GLenum type,
+               const PixelStore& store, void* out);
+
+}  // namespace passim

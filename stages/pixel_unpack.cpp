@@ -1,0 +1,113 @@
+#include "stages/pixel_unpack.hpp"
+
+#include <cstdint>
+#include <cstring>
+
+#include "pipeline/calls.hpp"
+
+namespace passim {
+
+int format_components(GLenum format) {
+  switch (format) {
+    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_LUMINANCE: case GL_DEPTH_COMPONENT:
+    case GL_STENCIL_INDEX: case GL_COLOR_INDEX:
+      return 1;
+    case GL_LUMINANCE_ALPHA: return 2;
+    case GL_RGB: case GL_BGR: return 3;
+    case GL_RGBA: case GL_BGRA: return 4;
+    default: return 0;
+  }
+}
+
+bool is_pixel_type(GLenum type) {
+  switch (type) {
+    case GL_UNSIGNED_BYTE: case GL_BYTE: case GL_UNSIGNED_SHORT: case GL_SHORT: case GL_UNSIGNED_INT: case GL_INT:
+    case GL_FLOAT:
+      return true;
+    default: return false;
+  }
+}
+
+namespace {
+
+// §3.6.4: the distance in bytes between the starts of consecutive rows.
+std::size_t row_stride(int width, int components, int size, const PixelStore& s) {
+  const std::size_t l = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
+  const std::size_t n = static_cast<std::size_t>(components), sz = static_cast<std::size_t>(size);
+  const std::size_t k = static_cast<std::size_t>(s.alignment);
+  if (sz >= k) return n * l * sz;
+  return k * ((sz * n * l + k - 1) / k);
+}
+
+double element(const std::byte* p, GLenum type, bool swap, bool normalise) {
+  std::byte b[8];
+  const int size = type_size(type);
+  std::memcpy(b, p, static_cast<std::size_t>(size));
+  if (swap)
+    for (int i = 0; i < size / 2; ++i) std::swap(b[i], b[size - 1 - i]);
+  // Table 2.6: unsigned c/(2^b - 1), signed (2c + 1)/(2^b - 1), floats unchanged.
+  switch (type) {
+    case GL_UNSIGNED_BYTE: { std::uint8_t v; std::memcpy(&v, b, 1); return normalise ? v / 255.0 : v; }
+    case GL_BYTE: { std::int8_t v; std::memcpy(&v, b, 1); return normalise ? (2.0 * v + 1.0) / 255.0 : v; }
+    case GL_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, b, 2); return normalise ? v / 65535.0 : v; }
+    case GL_SHORT: { std::int16_t v; std::memcpy(&v, b, 2); return normalise ? (2.0 * v + 1.0) / 65535.0 : v; }
+    case GL_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, b, 4); return normalise ? v / 4294967295.0 : v; }
+    case GL_INT: { std::int32_t v; std::memcpy(&v, b, 4); return normalise ? (2.0 * v + 1.0) / 4294967295.0 : v; }
+    case GL_FLOAT: { float v; std::memcpy(&v, b, 4); return v; }
+    default: return 0.0;
+  }
+}
+
+template <class F>
+void for_each_group(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s, F&& f) {
+  const int n = format_components(format), size = type_size(type);
+  const std::size_t stride = row_stride(width, n, size, s);
+  const std::byte* base = static_cast<const std::byte*>(data) + static_cast<std::size_t>(s.skip_rows) * stride +
+                          static_cast<std::size_t>(s.skip_pixels) * static_cast<std::size_t>(n * size);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      f(x, y, base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size), n, size);
+}
+
+}  // namespace
+
+std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& s) {
+  if (width <= 0 || height <= 0) return 0;
+  const int n = format_components(format), size = type_size(type);
+  const std::size_t stride = row_stride(width, n, size, s);
+  return static_cast<std::size_t>(s.skip_rows + height - 1) * stride +
+         static_cast<std::size_t>(s.skip_pixels + width) * static_cast<std::size_t>(n * size);
+}
+
+void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s,
+                 std::vector<Rgba>& out) {
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), Rgba{0.0, 0.0, 0.0, 1.0});
+  for_each_group(data, width, height, format, type, s, [&](int x, int y, const std::byte* p, int n, int size) {
+    double c[4];
+    for (int k = 0; k < n; ++k) c[k] = element(p + k * size, type, s.swap_bytes, true);
+    Rgba& o = out[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+    switch (format) {
+      case GL_RED: o[0] = c[0]; break;
+      case GL_GREEN: o[1] = c[0]; break;
+      case GL_BLUE: o[2] = c[0]; break;
+      case GL_ALPHA: o[3] = c[0]; break;
+      case GL_LUMINANCE: o[0] = o[1] = o[2] = c[0]; break;
+      case GL_LUMINANCE_ALPHA: o[0] = o[1] = o[2] = c[0]; o[3] = c[1]; break;
+      case GL_RGB: o[0] = c[0]; o[1] = c[1]; o[2] = c[2]; break;
+      case GL_BGR: o[0] = c[2]; o[1] = c[1]; o[2] = c[0]; break;
+      case GL_RGBA: o = {c[0], c[1], c[2], c[3]}; break;
+      case GL_BGRA: o = {c[2], c[1], c[0], c[3]}; break;
+      default: break;
+    }
+  });
+}
+
+void unpack_depth(const void* data, int width, int height, GLenum type, const PixelStore& s, std::vector<double>& out) {
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  for_each_group(data, width, height, GL_DEPTH_COMPONENT, type, s, [&](int x, int y, const std::byte* p, int, int) {
+    out[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
+        element(p, type, s.swap_bytes, true);
+  });
+}
+
+}  // namespace passim

@@ -1,0 +1,40 @@
+// Unpacking client pixel data (OpenGL 1.2.1 §3.6.4): addressing by the pixel-store
+// modes, Table 2.6 conversion to floating point, conversion to RGBA.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "pipeline/gl.hpp"
+
+namespace passim {
+
+// Table 3.1 (PixelStore) for one direction (pack or unpack).
+struct PixelStore {
+  bool swap_bytes = false;
+  bool lsb_first = false;
+  int row_length = 0;
+  int skip_rows = 0;
+  int skip_pixels = 0;
+  int alignment = 4;
+};
+
+using Rgba = std::array<double, 4>;
+
+// Components of a pixel format (Table 3.5); 0 for a name that is not one.
+int format_components(GLenum format);
+// The non-packed pixel types of Table 3.4 (BITMAP and the packed types are not modelled).
+bool is_pixel_type(GLenum type);
+// The bytes an image of width x height reads, counting from the data pointer (§3.6.4).
+std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& store);
+
+// Unpacks width x height groups into RGBA (§3.6.4): Table 2.6 conversion (integers to
+// [0,1] or [-1,1]); LUMINANCE to R = G = B = L; missing R, G, B are 0 and A is 1.
+// Rows bottom first, as GL images. Colour formats only (not DEPTH or STENCIL or INDEX).
+void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& store,
+                 std::vector<Rgba>& out);
+// Unpacks DEPTH_COMPONENT data into one value per pixel, Table 2.6 (unsigned types to [0,1]).
+void unpack_depth(const void* data, int width, int height, GLenum type, const PixelStore& store,
+                  std::vector<double>& out);
+
+}  // namespace passim

@@ -1,0 +1,218 @@
+#include "stages/texture_sample.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/fixed_point.hpp"
+
+namespace passim {
+namespace {
+
+bool is_mipmap_filter(GLenum f) { return f != GL_NEAREST && f != GL_LINEAR; }
+
+// Base-format components of the level's texel (i, j), or the border colour when (i, j) lies
+// beyond the specified border (§3.8.5); the texel is read as k / (2^bits − 1).
+struct Fetch {
+  const TextureObject& tex;
+  const TextureLevel& level;
+  Counters& counters;
+
+  double component(std::uint32_t k, int bits) const { return fixed_to_float(k, bits); }
+
+  // The raw components R, G, B, A (L in r, I in r, D in r) as reals.
+  std::array<double, 4> texel(int i, int j) const {
+    const int b = level.border;
+    const int w = level.width - 2 * b, h = level.height - 2 * b;
+    if (i < -b || i >= w + b || j < -b || j >= h + b) {
+      const Vec4& c = tex.border_color;
+      const InternalFormat& f = level.format;
+      // Table 3.15: the border colour is taken as an RGBA colour and mapped like a texel.
+      switch (f.base) {
+        case GL_LUMINANCE: case GL_INTENSITY: case GL_DEPTH_COMPONENT: return {c.r, c.r, c.r, c.r};
+        case GL_LUMINANCE_ALPHA: return {c.r, c.r, c.r, c.a};
+        default: return {c.r, c.g, c.b, c.a};
+      }
+    }
+    ++counters.texels_fetched;
+    const std::size_t p = 4 * (static_cast<std::size_t>(j + b) * static_cast<std::size_t>(level.width) +
+                               static_cast<std::size_t>(i + b));
+    const InternalFormat& f = level.format;
+    const std::uint32_t* t = &level.texels[p];
+    int bits = 0;
+    switch (f.base) {
+      case GL_ALPHA: bits = f.alpha; break;
+      case GL_LUMINANCE: case GL_LUMINANCE_ALPHA: bits = f.luminance + f.alpha; break;
+      case GL_INTENSITY: bits = f.intensity; break;
+      case GL_DEPTH_COMPONENT: bits = f.depth; break;
+      default: bits = f.red + f.green + f.blue + f.alpha; break;
+    }
+    counters.texture_bits_read += static_cast<std::uint64_t>(bits);
+    switch (f.base) {
+      case GL_ALPHA: return {0, 0, 0, component(t[3], f.alpha)};
+      case GL_LUMINANCE: { const double l = component(t[0], f.luminance); return {l, l, l, 1}; }
+      case GL_LUMINANCE_ALPHA: { const double l = component(t[0], f.luminance); return {l, l, l, component(t[3], f.alpha)}; }
+      case GL_INTENSITY: { const double v = component(t[0], f.intensity); return {v, v, v, v}; }
+      case GL_DEPTH_COMPONENT: { const double d = component(t[0], f.depth); return {d, d, d, d}; }
+      case GL_RGB: return {component(t[0], f.red), component(t[1], f.green), component(t[2], f.blue), 1};
+      default:
+        return {component(t[0], f.red), component(t[1], f.green), component(t[2], f.blue), component(t[3], f.alpha)};
+    }
+  }
+};
+
+// §3.8.4 wrap applied to a coordinate before scaling.
+double wrap_coordinate(double s, GLenum mode, int size) {
+  switch (mode) {
+    case GL_REPEAT: return s - std::floor(s);
+    case GL_CLAMP_TO_EDGE: {
+      const double lo = 1.0 / (2.0 * size), hi = 1.0 - lo;
+      return std::clamp(s, lo, hi);
+    }
+    default: return std::clamp(s, 0.0, 1.0);  // GL_CLAMP
+  }
+}
+
+int wrap_index(int i, GLenum mode, int size) {
+  if (mode == GL_REPEAT) {
+    int m = i % size;
+    return m < 0 ? m + size : m;
+  }
+  return i;  // CLAMP may reach the border (or border colour); CLAMP_TO_EDGE cannot leave [0, size)
+}
+
+// Depth comparison of one texel (A25: r rounded to the texel's depth width, codes compared).
+double compare_depth(const TextureObject& tex, const TextureLevel& level, double texel, double r) {
+  const int bits = level.format.depth;
+  const std::uint32_t d = float_to_fixed(texel, bits), rr = float_to_fixed(r, bits);
+  bool pass;
+  if (tex.compare_sgix) {
+    // SGIX_shadow: LEQUAL_R passes when texel <= r, GEQUAL_R when texel >= r.
+    pass = tex.compare_operator_sgix == GL_TEXTURE_GEQUAL_R_SGIX ? d >= rr : d <= rr;
+  } else {
+    // ARB_shadow: the function compares r with the texel D: LEQUAL passes when r <= D.
+    pass = tex.compare_func == GL_GEQUAL ? rr >= d : rr <= d;
+  }
+  return pass ? 1.0 : tex.shadow_ambient;
+}
+
+bool compares(const TextureObject& tex, const TextureLevel& level) {
+  return level.format.base == GL_DEPTH_COMPONENT && (tex.compare_sgix || tex.compare_mode == GL_COMPARE_R_TO_TEXTURE);
+}
+
+TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int dims, GLenum filter, double s,
+                        double t, double r, Counters& counters) {
+  const Fetch fetch{tex, level, counters};
+  const int w = level.width - 2 * level.border, h = dims == 2 ? level.height - 2 * level.border : 1;
+  const double ws = wrap_coordinate(s, tex.wrap_s, w);
+  const double wt = dims == 2 ? wrap_coordinate(t, tex.wrap_t, h) : 0.0;
+  const double u = ws * w, v = wt * h;
+  const bool cmp = compares(tex, level);
+  auto value = [&](int i, int j) {
+    std::array<double, 4> c = fetch.texel(wrap_index(i, tex.wrap_s, w), dims == 2 ? wrap_index(j, tex.wrap_t, h) : 0);
+    if (cmp) {
+      const double x = compare_depth(tex, level, c[0], r);
+      c = {x, x, x, x};
+    }
+    return c;
+  };
+  std::array<double, 4> out;
+  if (filter == GL_NEAREST) {
+    // §3.8.5: i = floor(u), with s = 1 giving W − 1.
+    const int i = std::min(static_cast<int>(std::floor(u)), w - 1);
+    const int j = dims == 2 ? std::min(static_cast<int>(std::floor(v)), h - 1) : 0;
+    out = value(i, j);
+  } else {
+    const double uu = u - 0.5, vv = v - 0.5;
+    const int i0 = static_cast<int>(std::floor(uu)), j0 = dims == 2 ? static_cast<int>(std::floor(vv)) : 0;
+    const double alpha = uu - std::floor(uu), beta = dims == 2 ? vv - std::floor(vv) : 0.0;
+    if (dims == 1) {
+      const auto a = value(i0, 0), b = value(i0 + 1, 0);
+      for (int k = 0; k < 4; ++k) out[k] = (1.0 - alpha) * a[k] + alpha * b[k];
+    } else {
+      // eq. 3.18: (1−α)(1−β)τ00 + α(1−β)τ10 + (1−α)βτ01 + αβτ11, A11: exact real weights.
+      const auto t00 = value(i0, j0), t10 = value(i0 + 1, j0), t01 = value(i0, j0 + 1), t11 = value(i0 + 1, j0 + 1);
+      for (int k = 0; k < 4; ++k)
+        out[k] = (1.0 - alpha) * (1.0 - beta) * t00[k] + alpha * (1.0 - beta) * t10[k] + (1.0 - alpha) * beta * t01[k] +
+                 alpha * beta * t11[k];
+    }
+  }
+  TexelValue tv{out[0], out[1], out[2], out[3]};
+  if (cmp) {
+    // The comparison result is a depth-texture value, returned per DEPTH_TEXTURE_MODE.
+    const double x = out[0];
+    if (tex.depth_texture_mode == GL_ALPHA) tv = {0, 0, 0, x};
+    else tv = {x, x, x, x};
+  }
+  return tv;
+}
+
+}  // namespace
+
+int texture_complete_levels(const TextureObject& tex, int dims) {
+  const int b = tex.base_level;
+  if (b < 0 || b >= static_cast<int>(tex.levels.size()) || !tex.levels[b].defined()) return -1;
+  if (!is_mipmap_filter(tex.min_filter)) return b;
+  const TextureLevel& base = tex.levels[b];
+  int w = base.width - 2 * base.border, h = base.height - 2 * base.border;
+  int last = b;
+  // Levels b+1 .. q halve each size (1 stays 1) with the same internal format and border.
+  while ((w > 1 || (dims == 2 && h > 1)) && last < tex.max_level) {
+    w = std::max(1, w / 2);
+    h = dims == 2 ? std::max(1, h / 2) : 1;
+    ++last;
+    if (last >= static_cast<int>(tex.levels.size())) return -1;
+    const TextureLevel& l = tex.levels[last];
+    if (!l.defined() || l.width - 2 * l.border != w || (dims == 2 && l.height - 2 * l.border != h) ||
+        l.format.requested != base.format.requested || l.border != base.border)
+      return -1;
+  }
+  return last;
+}
+
+bool texture_needs_lod(const TextureObject& tex) {
+  return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
+}
+
+TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,
+                          int last_level, Counters& counters) {
+  ++counters.texture_lookups;
+  // Non-finite coordinates (q = 0, overflow) are undefined in GL; they sample at 0 here.
+  if (!std::isfinite(s)) s = 0.0;
+  if (!std::isfinite(t)) t = 0.0;
+  if (!std::isfinite(r)) r = 0.0;
+  if (std::isnan(lambda)) lambda = 0.0;
+  const int b = tex.base_level;
+  // §3.8.7: magnification when λ <= c.
+  const double c = (tex.mag_filter == GL_LINEAR &&
+                    (tex.min_filter == GL_NEAREST_MIPMAP_NEAREST || tex.min_filter == GL_NEAREST_MIPMAP_LINEAR))
+                       ? 0.5
+                       : 0.0;
+  if (lambda <= c) return filter_level(tex, tex.levels[b], dims, tex.mag_filter, s, t, r, counters);
+  switch (tex.min_filter) {
+    case GL_NEAREST:
+    case GL_LINEAR:
+      return filter_level(tex, tex.levels[b], dims, tex.min_filter, s, t, r, counters);
+    case GL_NEAREST_MIPMAP_NEAREST:
+    case GL_LINEAR_MIPMAP_NEAREST: {
+      // A9: d = b if λ <= 1/2, else ceil(b + λ + 1/2) − 1, at most q.
+      int d = lambda <= 0.5 ? b : static_cast<int>(std::ceil(b + lambda + 0.5)) - 1;
+      d = std::min(d, last_level);
+      const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_NEAREST ? GL_NEAREST : GL_LINEAR;
+      return filter_level(tex, tex.levels[d], dims, f, s, t, r, counters);
+    }
+    default: {
+      // *_MIPMAP_LINEAR: d1 = floor(b + λ), d2 = d1 + 1 (both q when b + λ >= q).
+      const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_LINEAR ? GL_NEAREST : GL_LINEAR;
+      const double bl = b + lambda;
+      if (bl >= last_level) return filter_level(tex, tex.levels[last_level], dims, f, s, t, r, counters);
+      const int d1 = static_cast<int>(std::floor(bl));
+      const double frac = bl - std::floor(bl);
+      const TexelValue t1 = filter_level(tex, tex.levels[d1], dims, f, s, t, r, counters);
+      const TexelValue t2 = filter_level(tex, tex.levels[d1 + 1], dims, f, s, t, r, counters);
+      return {(1.0 - frac) * t1.r + frac * t2.r, (1.0 - frac) * t1.g + frac * t2.g, (1.0 - frac) * t1.b + frac * t2.b,
+              (1.0 - frac) * t1.a + frac * t2.a};
+    }
+  }
+}
+
+}  // namespace passim

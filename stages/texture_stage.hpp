@@ -1,0 +1,35 @@
+// Texturing of fragment spans (§3.8): sample the bound texture at each fragment's s/q,
+// t/q, r/q and λ, combine with the fragment colour by the texture environment, and pass
+// the span on. Placed between rasterization and the per-fragment operations, as the
+// modelled machines texture before the depth test.
+#pragma once
+#include <array>
+
+#include "pipeline/counters.hpp"
+#include "pipeline/texture.hpp"
+#include "stages/fragment_span.hpp"
+
+namespace passim {
+
+struct TextureStageSetup {
+  const TextureObject* texture = nullptr;
+  int dims = 2;
+  int last_level = 0;
+  GLenum env_mode = GL_MODULATE;
+  Vec4 env_color{0.0, 0.0, 0.0, 0.0};
+  std::array<int, 4> fragment_bits{8, 8, 8, 8};
+};
+
+class TextureStage final : public FragmentSink {
+ public:
+  TextureStage(FragmentSink& next, Counters*& counters) : next_(next), counters_(counters) {}
+  void configure(const TextureStageSetup& setup) { setup_ = setup; }
+  void process(FragmentSpan& span) override;
+
+ private:
+  FragmentSink& next_;
+  Counters*& counters_;
+  TextureStageSetup setup_;
+};
+
+}  // namespace passim
