@@ -256,6 +256,10 @@ const std::vector<CallInfo>& table() {
       ROW(glTexGenf, "eey", kNone),
       ROW(glTexGenfv, "eeFp", kNone),
       ROW(glTexGendv, "eeDp", kNone),
+      // fog
+      ROW(glFogf, "ey", kNone),
+      ROW(glFogi, "ex", kNone),
+      ROW(glFogfv, "eFp", kNone),
       // passes (EXT_debug_marker)
       ROW(glPushGroupMarkerEXT, "is", kNotCompiled),
       ROW(glPopGroupMarkerEXT, "", kNotCompiled),
@@ -357,6 +361,7 @@ int pname_count(GLenum pname) {
     case GL_LIGHT_MODEL_AMBIENT:
     case GL_TEXTURE_BORDER_COLOR:
     case GL_TEXTURE_ENV_COLOR:
+    case GL_FOG_COLOR:
     case GL_OBJECT_PLANE:
     case GL_EYE_PLANE:
       return 4;
@@ -374,6 +379,11 @@ int pname_count(GLenum pname) {
     case GL_LIGHT_MODEL_COLOR_CONTROL:
     case GL_TEXTURE_ENV_MODE:
     case GL_TEXTURE_GEN_MODE:
+    case GL_FOG_MODE:
+    case GL_FOG_DENSITY:
+    case GL_FOG_START:
+    case GL_FOG_END:
+    case GL_FOG_INDEX:
     case GL_TEXTURE_MIN_FILTER:
     case GL_TEXTURE_MAG_FILTER:
     case GL_TEXTURE_WRAP_S:

@@ -159,6 +159,7 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_BLEND: fragment_.blend = v; return true;
     case GL_DITHER: fragment_.dither = v; return true;  // A3: no effect on the bits
     case GL_COLOR_LOGIC_OP: fragment_.logic_op_enabled = v; return true;
+    case GL_FOG: fog_.enabled = v; return true;
     case GL_TEXTURE_1D: textures_.enabled_1d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
     case GL_TEXTURE_2D: textures_.enabled_2d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
     case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
@@ -171,7 +172,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POLYGON_SMOOTH:
     case GL_LINE_STIPPLE:
     case GL_POLYGON_STIPPLE:
-    case GL_FOG:
     case GL_TEXTURE_3D:
     case GL_AUTO_NORMAL:
     case GL_COLOR_TABLE:
@@ -262,7 +262,13 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_PACK_SWAP_BYTES: return one(pixel_store_.pack.swap_bytes);
     case GL_PACK_LSB_FIRST: return one(pixel_store_.pack.lsb_first);
     case GL_INDEX_LOGIC_OP: case GL_POINT_SMOOTH: case GL_LINE_SMOOTH: case GL_POLYGON_SMOOTH:
-    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE: case GL_FOG:
+    case GL_FOG: return one(fog_.enabled);
+    case GL_FOG_MODE: return one(fog_.mode);
+    case GL_FOG_DENSITY: return one(fog_.density);
+    case GL_FOG_START: return one(fog_.start);
+    case GL_FOG_END: return one(fog_.end);
+    case GL_FOG_COLOR: return color(fog_.color);
+    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE:
     case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
     case GL_SEPARABLE_2D: case GL_HISTOGRAM: case GL_MINMAX:

@@ -19,6 +19,7 @@
 #include "pipeline/state.hpp"
 #include "pipeline/texture.hpp"
 #include "stages/pixel_unpack.hpp"
+#include "stages/fog.hpp"
 #include "stages/rasterizer.hpp"
 #include "stages/vertex.hpp"
 
@@ -223,6 +224,11 @@ class Context {
   void glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params);
   void glTexGendv(GLenum coord, GLenum pname, const GLdouble* params);
 
+  // ---- fog (§3.10) ----
+  void glFogf(GLenum pname, GLfloat param);
+  void glFogi(GLenum pname, GLint param);
+  void glFogfv(GLenum pname, const GLfloat* params);
+
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();
 
@@ -318,9 +324,10 @@ class Context {
   void set_tex_parameter(GLenum target, GLenum pname, const double* v);
   void set_tex_env(GLenum target, GLenum pname, const double* v);
   void set_tex_gen(GLenum coord, GLenum pname, const double* v);
-  // The texture used by the next primitive (nullptr when texturing is off or incomplete).
-  void prepare_texturing(TriangleOptions& options);
+  // Chooses the stages (texture, fog) the next primitive's fragments pass before the per-fragment ops.
+  void prepare_fragment_stages(TriangleOptions& options);
   FragmentSink& fragment_sink();
+  void set_fog(GLenum pname, const double* v);
 
   Framebuffer fb_;
   MachineProfile profile_;
@@ -357,7 +364,8 @@ class Context {
   struct PixelStoreState {
     PixelStore pack, unpack;
   } pixel_store_;
-  bool texture_active_ = false;  // the last prepared primitive is textured
+  FogState fog_;
+  FragmentSink* first_stage_ = nullptr;  // where the prepared primitive's fragments go first
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};
   bool normal_matrix_dirty_ = true;

@@ -416,6 +416,7 @@ RasterVertex Context::to_window(const ProcessedVertex& v, int face) const {
   r.w = v.clip.w;
   r.color = v.color[face];
   r.tex = v.tex;
+  r.eye_z = v.eye.z / v.eye.w;
   return r;
 }
 
@@ -448,7 +449,7 @@ void Context::draw_point(const ProcessedVertex& v) {
   RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits, fb_.config.depth_bits,
                       fragment_bits_};
   TriangleOptions options;
-  prepare_texturing(options);
+  prepare_fragment_stages(options);
   rasterize_point(to_window(v, 0), polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
 }
 
@@ -496,7 +497,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
                             fb_.config.depth_bits, fragment_bits_};
   const GLenum mode = front ? polygon_.mode_front : polygon_.mode_back;
   TriangleOptions options;
-  prepare_texturing(options);
+  prepare_fragment_stages(options);
   if (mode == GL_POINT) {
     for (const RasterVertex& w : win)
       rasterize_point(w, polygon_.point_size, target, scratch_->spans, fragment_sink(), c);

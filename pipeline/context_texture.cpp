@@ -639,8 +639,13 @@ void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
 
 // ---------------------------------------------------------------- per primitive
 
-void Context::prepare_texturing(TriangleOptions& options) {
-  texture_active_ = false;
+void Context::prepare_fragment_stages(TriangleOptions& options) {
+  // The stages a primitive's fragments pass through: [texture] -> [fog] -> per-fragment ops.
+  options.fog = fog_.enabled;
+  FragmentSink& after_texture = fog_.enabled ? static_cast<FragmentSink&>(scratch_->fog_stage)
+                                             : static_cast<FragmentSink&>(scratch_->fragment_ops);
+  if (fog_.enabled) scratch_->fog_stage.configure(fog_, fragment_bits_, scratch_->fragment_ops);
+  first_stage_ = &after_texture;
   options.texcoords = false;
   options.lod = false;
   if (!texturing_enabled_) return;
@@ -662,13 +667,57 @@ void Context::prepare_texturing(TriangleOptions& options) {
   options.min_lod = tex.min_lod;
   options.max_lod = tex.max_lod;
   scratch_->texture_stage.configure(
-      TextureStageSetup{&tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_});
-  texture_active_ = true;
+      TextureStageSetup{&tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_}, after_texture);
+  first_stage_ = &scratch_->texture_stage;
 }
 
-FragmentSink& Context::fragment_sink() {
-  if (texture_active_) return scratch_->texture_stage;
-  return scratch_->fragment_ops;
+FragmentSink& Context::fragment_sink() { return first_stage_ ? *first_stage_ : scratch_->fragment_ops; }
+
+// ---------------------------------------------------------------- fog (§3.10)
+
+void Context::set_fog(GLenum pname, const double* v) {
+  switch (pname) {
+    case GL_FOG_MODE: {
+      const GLenum m = static_cast<GLenum>(v[0]);
+      if (m != GL_LINEAR && m != GL_EXP && m != GL_EXP2) return set_error(GL_INVALID_ENUM);
+      fog_.mode = m;
+      break;
+    }
+    case GL_FOG_DENSITY:
+      if (v[0] < 0.0) return set_error(GL_INVALID_VALUE);
+      fog_.density = v[0];
+      break;
+    case GL_FOG_START: fog_.start = v[0]; break;
+    case GL_FOG_END: fog_.end = v[0]; break;
+    case GL_FOG_COLOR:
+      fog_.color = Vec4(clamp_nan_low(v[0], 0, 1), clamp_nan_low(v[1], 0, 1), clamp_nan_low(v[2], 0, 1),
+                        clamp_nan_low(v[3], 0, 1));
+      break;
+    case GL_FOG_INDEX: break;  // colour-index mode: not modelled
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glFogf(GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(pname, param)
+  if (pname == GL_FOG_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_fog(pname, v);
+}
+
+void Context::glFogi(GLenum pname, GLint param) {
+  PASSIM_ENTRY(pname, param)
+  if (pname == GL_FOG_COLOR) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_fog(pname, v);
+}
+
+void Context::glFogfv(GLenum pname, const GLfloat* params) {
+  const int n = pname == GL_FOG_COLOR ? 4 : 1;
+  PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_fog(pname, v);
 }
 
 }  // namespace passim

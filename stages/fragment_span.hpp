@@ -18,6 +18,7 @@ struct FragmentSpan {
   double* t = nullptr;
   double* r = nullptr;
   double* lambda = nullptr;
+  double* fog = nullptr;  // fog coordinate c = |z_eye| (set when fog is on)
 };
 
 // Storage for one span of up to `max_width` fragments.
@@ -29,14 +30,15 @@ struct SpanBuffers {
         s(max_width),
         t(max_width),
         r(max_width),
-        lambda(max_width) {}
+        lambda(max_width),
+        fog(max_width) {}
   std::vector<std::uint16_t> rgba;
   std::vector<std::uint32_t> depth;
   std::vector<std::uint8_t> live;
-  std::vector<double> s, t, r, lambda;
+  std::vector<double> s, t, r, lambda, fog;
   FragmentSpan span(int y, int x0, int count) {
     return FragmentSpan{y, x0, count, rgba.data(), depth.data(), live.data(), s.data(), t.data(), r.data(),
-                        lambda.data()};
+                        lambda.data(), fog.data()};
   }
 };
 

@@ -172,6 +172,13 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       tex_plane[k] = setup.plane(v[0]->tex[k] * w0, v[1]->tex[k] * w1, v[2]->tex[k] * w2);
     }
   }
+  // Fog coordinate: planes of z_eye/w and 1/w.
+  Plane fog_plane, fog_q;
+  if (options.fog) {
+    const double w0 = 1.0 / v[0]->w, w1 = 1.0 / v[1]->w, w2 = 1.0 / v[2]->w;
+    fog_plane = setup.plane(v[0]->eye_z * w0, v[1]->eye_z * w1, v[2]->eye_z * w2);
+    fog_q = setup.plane(w0, w1, w2);
+  }
   const double depth_scale = static_cast<double>(max_code(target.depth_bits));
   double color_scale[4];
   for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
@@ -211,6 +218,13 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
       color_codes(SpanPlane{q_plane.at_row(cy, setup.y0), q_plane.dfdx}, c, color_scale, x0, setup.x0, n, span.rgba);
     }
     if (options.texcoords) texture_coordinates(tex_plane, setup, cy, x0, n, options, span);
+    if (options.fog) {
+      const double f_row = fog_plane.at_row(cy, setup.y0), q_row = fog_q.at_row(cy, setup.y0);
+      for (int i = 0; i < n; ++i) {
+        const double dx = (static_cast<double>(x0 + i) + 0.5) - setup.x0;
+        span.fog[i] = std::fabs((f_row + fog_plane.dfdx * dx) / (q_row + fog_q.dfdx * dx));
+      }
+    }
     sink.process(span);
   }
 }
@@ -245,6 +259,8 @@ void rasterize_point(const RasterVertex& v, double size, const RasterTarget& tar
       span.t[i] = v.tex[1] / v.tex[3];
       span.r[i] = v.tex[2] / v.tex[3];
       span.lambda[i] = 0.0;
+      span.fog[i] = std::fabs(v.eye_z);
+      span.fog[i] = std::fabs(v.eye_z);
     }
     sink.process(span);
   }

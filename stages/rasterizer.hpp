@@ -17,6 +17,7 @@ struct RasterVertex {
   double w = 1.0;                    // clip w, for perspective correction
   Vec4 color{};                      // clamped, quantised colour
   Vec4 tex{0.0, 0.0, 0.0, 1.0};      // texture coordinates (s, t, r, q)
+  double eye_z = 0.0;                // eye-coordinate z, for fog
 };
 
 struct RasterTarget {
@@ -35,6 +36,7 @@ struct TriangleOptions {
   bool lod = false;        // also compute λ (§3.8.5, eq. 3.15) for a base level of lod_width x lod_height
   double lod_width = 1.0, lod_height = 1.0;
   double min_lod = -1000.0, max_lod = 1000.0;
+  bool fog = false;  // compute the fog coordinate |z_eye| (perspective-correct)
 };
 
 // The fixed-point coordinate of a window coordinate: round(x · 2^subpixel_bits), doubled so

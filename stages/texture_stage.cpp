@@ -22,7 +22,7 @@ void TextureStage::process(FragmentSpan& span) {
     // A4: the textured colour is rounded to the fragment colour width.
     for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
   }
-  next_.process(span);
+  next_->process(span);
 }
 
 }  // namespace passim

@@ -22,12 +22,15 @@ struct TextureStageSetup {
 
 class TextureStage final : public FragmentSink {
  public:
-  TextureStage(FragmentSink& next, Counters*& counters) : next_(next), counters_(counters) {}
-  void configure(const TextureStageSetup& setup) { setup_ = setup; }
+  explicit TextureStage(Counters*& counters) : counters_(counters) {}
+  void configure(const TextureStageSetup& setup, FragmentSink& next) {
+    setup_ = setup;
+    next_ = &next;
+  }
   void process(FragmentSpan& span) override;
 
  private:
-  FragmentSink& next_;
+  FragmentSink* next_ = nullptr;
   Counters*& counters_;
   TextureStageSetup setup_;
 };

@@ -350,3 +350,35 @@ TEST(Texture, MipmapLevelSelection) {
   quad(2);  // λ = 1: exactly level 1 (weight 0 on level 2) -> 128
   EXPECT_EQ(pixel(ctx, 0, 0)[0], 128u);
 }
+
+TEST(Fog, LinearExpExp2) {
+  // White fragments at eye z = −1 (c = 1) or −2 (c = 2), fog colour black:
+  //  LINEAR start 0, end 4, c = 1: f = 3/4 -> 191.25 -> 191 (8 bits), 3071.25 -> 3071 (12 bits).
+  //  EXP density 0.5, c = 2: f = e^−1 = 0.367879 -> 93.81 -> 94; 0.367879·4095 = 1506.47 -> 1506.
+  //  EXP2 density 0.5, c = 1: f = e^−0.25 = 0.778801 -> 198.59 -> 199; 3189.19 -> 3189.
+  struct Case { GLenum mode; float z; std::uint32_t c8, c12; };
+  const Case cases[] = {{GL_LINEAR, -1, 191, 3071}, {GL_EXP, -2, 94, 1506}, {GL_EXP2, -1, 199, 3189}};
+  for (const Case& c : cases)
+    for (int bits : {8, 12}) {
+      Context ctx(test::small_config(1, 1, bits));
+      ctx.glMatrixMode(GL_PROJECTION);
+      ctx.glOrtho(0, 1, 0, 1, -10, 10);
+      ctx.glMatrixMode(GL_MODELVIEW);
+      ctx.glEnable(GL_FOG);
+      ctx.glFogi(GL_FOG_MODE, static_cast<GLint>(c.mode));
+      ctx.glFogf(GL_FOG_START, 0);
+      ctx.glFogf(GL_FOG_END, 4);
+      ctx.glFogf(GL_FOG_DENSITY, 0.5f);
+      ctx.glColor4f(1, 1, 1, 1);
+      ctx.glBegin(GL_QUADS);
+      ctx.glVertex3f(0, 0, c.z);
+      ctx.glVertex3f(1, 0, c.z);
+      ctx.glVertex3f(1, 1, c.z);
+      ctx.glVertex3f(0, 1, c.z);
+      ctx.glEnd();
+      const auto p = pixel(ctx, 0, 0);
+      EXPECT_EQ(p[0], bits == 8 ? c.c8 : c.c12) << enum_name(c.mode) << " bits " << bits;
+      EXPECT_EQ(p[3], bits == 8 ? 255u : 4095u);  // alpha unchanged
+      EXPECT_EQ(ctx.total_counters().fog_operations, 1u);
+    }
+}
