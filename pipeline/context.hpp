@@ -286,6 +286,7 @@ class Context {
   std::vector<Mat4>& current_stack();
   void mult_matrix(const Mat4& m);
   void submit_vertex(const Vec4& object_position);
+  double vertex_color(double c, int bits) const;
   void emit_primitive_vertex(const ProcessedVertex& v);
   void flush_polygon();
   void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);

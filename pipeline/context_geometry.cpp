@@ -273,6 +273,12 @@ void Context::glEnd() {
   prim_vertices_.clear();
 }
 
+double Context::vertex_color(double c, int bits) const {
+  // §2.13.6 clamp to [0, 1]; A4 rounds to the fragment width unless the profile says otherwise.
+  if (profile_.arithmetic.quantise_vertex_colors) return quantise(c, bits);
+  return clamp_nan_low(c, 0.0, 1.0);
+}
+
 void Context::submit_vertex(const Vec4& object) {
   if (!in_begin_) return;  // §2.6.3: Vertex outside Begin/End is undefined; it is ignored here
   Counters& c = counters();
@@ -305,12 +311,12 @@ void Context::submit_vertex(const Vec4& object) {
       // §2.13.6 clamp, A4 quantise; no texturing yet, so the colour sum happens here.
       for (int k = 0; k < 4; ++k) {
         double value = lit.primary[k] + (k < 3 ? lit.secondary[k] : 0.0);
-        v.color[f][k] = quantise(value, fragment_bits_[k]);
+        v.color[f][k] = vertex_color(value, fragment_bits_[k]);
       }
     }
     if (faces == 1) v.color[1] = v.color[0];
   } else {
-    for (int k = 0; k < 4; ++k) v.color[0][k] = quantise(current_.color[k], fragment_bits_[k]);
+    for (int k = 0; k < 4; ++k) v.color[0][k] = vertex_color(current_.color[k], fragment_bits_[k]);
     v.color[1] = v.color[0];
   }
   // Texture coordinates are carried only while a texture target is enabled: texgen (§2.10.4),

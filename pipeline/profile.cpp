@@ -51,6 +51,17 @@ const std::vector<MachineProfile>& machine_profiles() {
       m.sources = "widths assumed (not found in public sources, gl12-semantics §9)";
       p.push_back(m);
     }
+    {
+      MachineProfile m;
+      m.name = "mesa-llvmpipe";
+      m.description = "Debian 12 Mesa llvmpipe's open choices, for the outside check: 8 sub-pixel bits, "
+                      "vertex colours interpolated unrounded.";
+      m.limits.subpixel_bits = 8;
+      m.arithmetic.quantise_vertex_colors = false;
+      m.limits.max_convolution_width = m.limits.max_convolution_height = 9;  // Mesa 6.x; llvmpipe has none
+      m.sources = "measured against OSMesa 22.3.6 (tests/osmesa_check.cpp, docs/arithmetic.md)";
+      p.push_back(m);
+    }
     return p;
   }();
   return profiles;

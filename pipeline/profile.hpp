@@ -28,6 +28,14 @@ struct MachineLimits {
   int subpixel_bits = 4;  // window-coordinate snapping of vertices (A5)
 };
 
+// Choices of the arithmetic that the spec leaves open and machines made differently
+// (docs/arithmetic.md). They affect the bits, so a trace header records the profile.
+struct ArithmeticOptions {
+  // A4: round the lit (or current) vertex colour to the fragment width before it is
+  // interpolated. Off: the clamped real colour is interpolated (as Mesa does).
+  bool quantise_vertex_colors = true;
+};
+
 struct MachineProfile {
   std::string name;
   std::string description;
@@ -36,6 +44,7 @@ struct MachineProfile {
   int stencil_bits = 8;
   int accum_bits = 16;  // per component, signed
   MachineLimits limits;
+  ArithmeticOptions arithmetic;
   std::string sources;  // where the figures come from
 };
 
