@@ -70,4 +70,4 @@ BENCHMARK(BM_LitSceneDisplayList)->Arg(8)->Arg(12)->Unit(benchmark::kMillisecond
 
 }  // namespace
 
-BENCHMARK_MAIN();
+
