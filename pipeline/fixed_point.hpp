@@ -18,8 +18,16 @@ constexpr double clamp_nan_low(double v, double lo, double hi) {
   return v;
 }
 
+// floor(x) without a library call where the value fits an integer; the same result as
+// std::floor for every double (both are exact).
+inline double floor_exact(double x) {
+  if (!(x > -4.0e15 && x < 4.0e15)) return std::floor(x);
+  const double t = static_cast<double>(static_cast<long long>(x));
+  return t > x ? t - 1.0 : t;
+}
+
 // A1: round to nearest, ties towards +infinity.
-inline double round_half_up(double x) { return std::floor(x + 0.5); }
+inline double round_half_up(double x) { return floor_exact(x + 0.5); }
 
 // §2.13.9: k = round(clamp(c, 0, 1) * (2^bits - 1)).
 inline std::uint32_t float_to_fixed(double c, int bits) {
@@ -32,6 +40,14 @@ inline std::uint32_t float_to_fixed(double c, int bits) {
 inline double fixed_to_float(std::uint32_t k, int bits) {
   if (bits == 0) return 1.0;
   return static_cast<double>(k) / static_cast<double>(max_code(bits));
+}
+
+// fixed_to_float through a table built once per width (1-16 bits): the same values,
+// without a division per call.
+const double* code_values(int bits);
+inline double code_value(std::uint32_t k, int bits) {
+  if (bits == 0) return 1.0;
+  return code_values(bits)[k];
 }
 
 // Quantise a real colour to the nearest representable value at `bits`.

@@ -1,5 +1,7 @@
 #include "pipeline/texture.hpp"
 
+#include "pipeline/fixed_point.hpp"
+
 namespace passim {
 
 std::optional<InternalFormat> internal_format(GLint f, int u) {
@@ -63,6 +65,38 @@ std::optional<InternalFormat> internal_format(GLint f, int u) {
     case GL_DEPTH_COMPONENT24: r.base = GL_DEPTH_COMPONENT; r.depth = 24; return r;
     case GL_DEPTH_COMPONENT32: r.base = GL_DEPTH_COMPONENT; r.depth = 32; return r;
     default: return std::nullopt;
+  }
+}
+
+const std::vector<double>& TextureLevel::values() const {
+  if (!decoded.empty() || texels.empty()) return decoded;
+  decoded.resize(texels.size());
+  const InternalFormat& f = format;
+  for (std::size_t p = 0; p < texels.size(); p += 4) {
+    const std::uint32_t* t = &texels[p];
+    double* o = &decoded[p];
+    auto v = [](std::uint32_t k, int bits) { return fixed_to_float(k, bits); };
+    switch (f.base) {
+      case GL_ALPHA: o[0] = o[1] = o[2] = 0.0; o[3] = v(t[3], f.alpha); break;
+      case GL_LUMINANCE: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = 1.0; break;
+      case GL_LUMINANCE_ALPHA: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = v(t[3], f.alpha); break;
+      case GL_INTENSITY: o[0] = o[1] = o[2] = o[3] = v(t[0], f.intensity); break;
+      case GL_DEPTH_COMPONENT: o[0] = o[1] = o[2] = o[3] = v(t[0], f.depth); break;
+      case GL_RGB: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = 1.0; break;
+      default: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = v(t[3], f.alpha); break;
+    }
+  }
+  return decoded;
+}
+
+int TextureLevel::bits_per_texel() const {
+  const InternalFormat& f = format;
+  switch (f.base) {
+    case GL_ALPHA: return f.alpha;
+    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA: return f.luminance + f.alpha;
+    case GL_INTENSITY: return f.intensity;
+    case GL_DEPTH_COMPONENT: return f.depth;
+    default: return f.red + f.green + f.blue + f.alpha;
   }
 }
 

@@ -32,6 +32,11 @@ struct TextureLevel {
   // LUMINANCE(_ALPHA); I in [0] for INTENSITY; D in [0] for DEPTH_COMPONENT.
   std::vector<std::uint32_t> texels;
   bool defined() const { return width > 0 && height > 0; }
+  // The texels as the reals k/(2^bits − 1) sampling reads, R G B A per texel with L and I
+  // replicated (Table 3.18 sources): made on first sampling, dropped when texels change.
+  mutable std::vector<double> decoded;
+  const std::vector<double>& values() const;
+  int bits_per_texel() const;
 };
 
 // Table 6.18 (texture objects).

@@ -356,8 +356,8 @@ void FragmentOps::process(FragmentSpan& span) {
       if (blend_on) {
         double src[4], dcol[4];
         for (int k = 0; k < 4; ++k) {
-          src[k] = fixed_to_float(s[k], fragment_bits[k]);
-          dcol[k] = fixed_to_float(d[k], cfg.color_bits[k]);  // no alpha bits: Ad = 1
+          src[k] = code_value(s[k], fragment_bits[k]);
+          dcol[k] = code_value(d[k], cfg.color_bits[k]);  // no alpha bits: Ad = 1
         }
         for (int k = 0; k < 4; ++k) {
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);

@@ -13,7 +13,7 @@ namespace {
 
 void store(std::byte* p, GLenum type, double f, bool swap) {
   f = clamp_nan_low(f, 0.0, 1.0);
-  std::byte b[8];
+  std::byte b[8] = {};
   auto put = [&](auto v) { std::memcpy(b, &v, sizeof(v)); };
   switch (type) {
     case GL_UNSIGNED_BYTE: put(static_cast<std::uint8_t>(round_half_up(255.0 * f))); break;

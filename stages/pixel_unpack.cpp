@@ -40,7 +40,7 @@ std::size_t row_stride(int width, int components, int size, const PixelStore& s)
 }
 
 double element(const std::byte* p, GLenum type, bool swap, bool normalise) {
-  std::byte b[8];
+  std::byte b[8] = {};
   const int size = type_size(type);
   std::memcpy(b, p, static_cast<std::size_t>(size));
   if (swap)

@@ -16,8 +16,8 @@ struct Fetch {
   const TextureObject& tex;
   const TextureLevel& level;
   Counters& counters;
-
-  double component(std::uint32_t k, int bits) const { return fixed_to_float(k, bits); }
+  const std::vector<double>& values = level.values();
+  const int bits = level.bits_per_texel();
 
   // The raw components R, G, B, A (L in r, I in r, D in r) as reals.
   std::array<double, 4> texel(int i, int j) const {
@@ -34,36 +34,17 @@ struct Fetch {
       }
     }
     ++counters.texels_fetched;
+    counters.texture_bits_read += static_cast<std::uint64_t>(bits);
     const std::size_t p = 4 * (static_cast<std::size_t>(j + b) * static_cast<std::size_t>(level.width) +
                                static_cast<std::size_t>(i + b));
-    const InternalFormat& f = level.format;
-    const std::uint32_t* t = &level.texels[p];
-    int bits = 0;
-    switch (f.base) {
-      case GL_ALPHA: bits = f.alpha; break;
-      case GL_LUMINANCE: case GL_LUMINANCE_ALPHA: bits = f.luminance + f.alpha; break;
-      case GL_INTENSITY: bits = f.intensity; break;
-      case GL_DEPTH_COMPONENT: bits = f.depth; break;
-      default: bits = f.red + f.green + f.blue + f.alpha; break;
-    }
-    counters.texture_bits_read += static_cast<std::uint64_t>(bits);
-    switch (f.base) {
-      case GL_ALPHA: return {0, 0, 0, component(t[3], f.alpha)};
-      case GL_LUMINANCE: { const double l = component(t[0], f.luminance); return {l, l, l, 1}; }
-      case GL_LUMINANCE_ALPHA: { const double l = component(t[0], f.luminance); return {l, l, l, component(t[3], f.alpha)}; }
-      case GL_INTENSITY: { const double v = component(t[0], f.intensity); return {v, v, v, v}; }
-      case GL_DEPTH_COMPONENT: { const double d = component(t[0], f.depth); return {d, d, d, d}; }
-      case GL_RGB: return {component(t[0], f.red), component(t[1], f.green), component(t[2], f.blue), 1};
-      default:
-        return {component(t[0], f.red), component(t[1], f.green), component(t[2], f.blue), component(t[3], f.alpha)};
-    }
+    return {values[p], values[p + 1], values[p + 2], values[p + 3]};
   }
 };
 
 // §3.8.4 wrap applied to a coordinate before scaling.
 double wrap_coordinate(double s, GLenum mode, int size) {
   switch (mode) {
-    case GL_REPEAT: return s - std::floor(s);
+    case GL_REPEAT: return s - floor_exact(s);
     case GL_CLAMP_TO_EDGE: {
       const double lo = 1.0 / (2.0 * size), hi = 1.0 - lo;
       return std::clamp(s, lo, hi);
@@ -118,13 +99,13 @@ TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int
   std::array<double, 4> out;
   if (filter == GL_NEAREST) {
     // §3.8.5: i = floor(u), with s = 1 giving W − 1.
-    const int i = std::min(static_cast<int>(std::floor(u)), w - 1);
-    const int j = dims == 2 ? std::min(static_cast<int>(std::floor(v)), h - 1) : 0;
+    const int i = std::min(static_cast<int>(floor_exact(u)), w - 1);
+    const int j = dims == 2 ? std::min(static_cast<int>(floor_exact(v)), h - 1) : 0;
     out = value(i, j);
   } else {
     const double uu = u - 0.5, vv = v - 0.5;
-    const int i0 = static_cast<int>(std::floor(uu)), j0 = dims == 2 ? static_cast<int>(std::floor(vv)) : 0;
-    const double alpha = uu - std::floor(uu), beta = dims == 2 ? vv - std::floor(vv) : 0.0;
+    const int i0 = static_cast<int>(floor_exact(uu)), j0 = dims == 2 ? static_cast<int>(floor_exact(vv)) : 0;
+    const double alpha = uu - floor_exact(uu), beta = dims == 2 ? vv - floor_exact(vv) : 0.0;
     if (dims == 1) {
       const auto a = value(i0, 0), b = value(i0 + 1, 0);
       for (int k = 0; k < 4; ++k) out[k] = (1.0 - alpha) * a[k] + alpha * b[k];
@@ -205,8 +186,8 @@ TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t
       const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_LINEAR ? GL_NEAREST : GL_LINEAR;
       const double bl = b + lambda;
       if (bl >= last_level) return filter_level(tex, tex.levels[last_level], dims, f, s, t, r, counters);
-      const int d1 = static_cast<int>(std::floor(bl));
-      const double frac = bl - std::floor(bl);
+      const int d1 = static_cast<int>(floor_exact(bl));
+      const double frac = bl - floor_exact(bl);
       const TexelValue t1 = filter_level(tex, tex.levels[d1], dims, f, s, t, r, counters);
       const TexelValue t2 = filter_level(tex, tex.levels[d1 + 1], dims, f, s, t, r, counters);
       return {(1.0 - frac) * t1.r + frac * t2.r, (1.0 - frac) * t1.g + frac * t2.g, (1.0 - frac) * t1.b + frac * t2.b,

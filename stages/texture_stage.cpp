@@ -16,8 +16,8 @@ void TextureStage::process(FragmentSpan& span) {
     const TexelValue tv =
         sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);
     std::uint16_t* c = span.rgba + 4 * i;
-    const Vec4 cf(fixed_to_float(c[0], bits[0]), fixed_to_float(c[1], bits[1]), fixed_to_float(c[2], bits[2]),
-                  fixed_to_float(c[3], bits[3]));
+    const Vec4 cf(code_value(c[0], bits[0]), code_value(c[1], bits[1]), code_value(c[2], bits[2]),
+                  code_value(c[3], bits[3]));
     const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
     // A4: the textured colour is rounded to the fragment colour width.
     for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));

@@ -59,3 +59,11 @@ TEST(FixedPoint, EightToTwelveBitsA2) {
   // 12 -> 8: 2048·255/4095 = 127.53 -> 128
   EXPECT_EQ(rescale_code(2048, 12, 8), 128u);
 }
+
+TEST(FixedPoint, FloorExactMatchesStdFloor) {
+  const double values[] = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 2.999999999, -2.000000001, 1e15 + 0.5, -1e15 - 0.5,
+                           4.5e15, -4.5e15, 1e300, -1e300, INFINITY, -INFINITY, 0.49999999999999994};
+  for (double v : values) EXPECT_EQ(floor_exact(v), std::floor(v)) << v;
+  EXPECT_TRUE(std::isnan(floor_exact(std::nan(""))));
+  for (std::uint32_t k = 0; k <= 4095; ++k) ASSERT_EQ(code_value(k, 12), fixed_to_float(k, 12));
+}
