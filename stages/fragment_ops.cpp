@@ -348,6 +348,14 @@ void FragmentOps::process(FragmentSpan& span) {
       }
       continue;
     }
+    // Code -> real tables for this span's widths (k/(2^n − 1); a 0-bit channel reads 1).
+    static const double kOne = 1.0;
+    const double* src_values[4];
+    const double* dst_values[4];
+    for (int k = 0; k < 4; ++k) {
+      src_values[k] = fragment_bits[k] ? code_values(fragment_bits[k]) : nullptr;
+      dst_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
+    }
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
@@ -356,8 +364,8 @@ void FragmentOps::process(FragmentSpan& span) {
       if (blend_on) {
         double src[4], dcol[4];
         for (int k = 0; k < 4; ++k) {
-          src[k] = code_value(s[k], fragment_bits[k]);
-          dcol[k] = code_value(d[k], cfg.color_bits[k]);  // no alpha bits: Ad = 1
+          src[k] = src_values[k] ? src_values[k][s[k]] : kOne;
+          dcol[k] = dst_values[k] ? dst_values[k][d[k]] : kOne;  // no alpha bits: Ad = 1
         }
         for (int k = 0; k < 4; ++k) {
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
