@@ -287,6 +287,7 @@ class Context {
   void mult_matrix(const Mat4& m);
   void submit_vertex(const Vec4& object_position);
   double vertex_color(double c, int bits) const;
+  void light_pending_vertex(ProcessedVertex& v, int face) const;
   void emit_primitive_vertex(const ProcessedVertex& v);
   void flush_polygon();
   void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);
@@ -382,6 +383,8 @@ class Context {
   bool in_begin_ = false;
   GLenum begin_mode_ = GL_POINTS;
   std::vector<ProcessedVertex> prim_vertices_;
+  std::vector<std::array<Material, 2>> vertex_materials_;  // materials in force for this Begin/End's vertices
+  bool materials_dirty_ = true;
   std::uint64_t prim_vertex_count_ = 0;
 
   // display lists

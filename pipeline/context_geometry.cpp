@@ -190,6 +190,7 @@ const Mat4& Context::normal_matrix() {
 
 void Context::apply_color_material() {
   if (!lighting_.color_material) return;
+  materials_dirty_ = true;
   const GLenum face = lighting_.color_material_face;
   for (int f = 0; f < 2; ++f) {
     if ((f == 0 && face == GL_BACK) || (f == 1 && face == GL_FRONT)) continue;
@@ -257,6 +258,8 @@ void Context::glBegin(GLenum mode) {
   if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
   in_begin_ = true;
   begin_mode_ = mode;
+  vertex_materials_.clear();
+  materials_dirty_ = true;
   prim_vertices_.clear();
   prim_vertex_count_ = 0;
 }
@@ -304,17 +307,17 @@ void Context::submit_vertex(const Vec4& object) {
     }
   }
   if (lighting_.enabled) {
-    const int faces = lighting_.two_side ? 2 : 1;
-    for (int f = 0; f < faces; ++f) {
-      LitColor lit = light_vertex(lighting_, lighting_.material[f], v.eye, f == 0 ? n : -n);
-      ++c.lighting_evaluations;
-      // §2.13.6 clamp, A4 quantise; no texturing yet, so the colour sum happens here.
-      for (int k = 0; k < 4; ++k) {
-        double value = lit.primary[k] + (k < 3 ? lit.secondary[k] : 0.0);
-        v.color[f][k] = vertex_color(value, fragment_bits_[k]);
-      }
+    // The modelled machine lights every vertex (and both faces with two-sided lighting); the
+    // counter says so. The simulator evaluates the equation only for the faces of polygons
+    // that survive culling (light_pending), which gives the same bits.
+    c.lighting_evaluations += lighting_.two_side ? 2 : 1;
+    if (materials_dirty_ || vertex_materials_.empty()) {
+      vertex_materials_.push_back(lighting_.material);
+      materials_dirty_ = false;
     }
-    if (faces == 1) v.color[1] = v.color[0];
+    v.material_index = static_cast<std::uint32_t>(vertex_materials_.size() - 1);
+    v.normal_eye = n;
+    v.light_pending = true;
   } else {
     for (int k = 0; k < 4; ++k) v.color[0][k] = vertex_color(current_.color[k], fragment_bits_[k]);
     v.color[1] = v.color[0];
@@ -344,6 +347,18 @@ void Context::submit_vertex(const Vec4& object) {
     v.tex = transform_.texture.back() * tc;
   }
   emit_primitive_vertex(v);
+}
+
+void Context::light_pending_vertex(ProcessedVertex& v, int face) const {
+  // §2.13.1 with the material current when the vertex was given; §2.13.6 clamp, A4 rounding.
+  // No texturing between primary and secondary colour yet, so the colour sum happens here.
+  const Material& m = vertex_materials_[v.material_index][static_cast<std::size_t>(face)];
+  const LitColor lit = light_vertex(lighting_, m, v.eye, face == 0 ? v.normal_eye : -v.normal_eye);
+  for (int k = 0; k < 4; ++k) {
+    const double value = lit.primary[k] + (k < 3 ? lit.secondary[k] : 0.0);
+    v.color[static_cast<std::size_t>(face)][k] = vertex_color(value, fragment_bits_[k]);
+  }
+  if (!lighting_.two_side) v.color[1] = v.color[0];
 }
 
 void Context::emit_primitive_vertex(const ProcessedVertex& v) {
@@ -456,7 +471,9 @@ void Context::draw_point(const ProcessedVertex& v) {
                       fragment_bits_};
   TriangleOptions options;
   prepare_fragment_stages(options);
-  rasterize_point(to_window(v, 0), polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
+  ProcessedVertex lit = v;
+  if (lit.light_pending) light_pending_vertex(lit, 0);
+  rasterize_point(to_window(lit, 0), polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
 }
 
 void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
@@ -496,8 +513,21 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
     return;
   }
   const int face = (lighting_.enabled && lighting_.two_side && !front) ? 1 : 0;
-  if (face == 1)
+  ProcessedVertex flat_source = provoking;
+  if (provoking.light_pending) {
+    // Light the polygon's vertices for the face that is drawn, then clip again with the lit
+    // colours (the same clip, so the same positions; trivially inside polygons skip it).
+    poly.clear();
+    for (int k = 0; k < count; ++k) {
+      poly.push_back(*vertices[k]);
+      light_pending_vertex(poly.back(), face);
+    }
+    light_pending_vertex(flat_source, face);
+    if (cut) clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut);
+    for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[static_cast<std::size_t>(face)];
+  } else if (face == 1) {
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
+  }
 
   const RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
                             fb_.config.depth_bits, fragment_bits_};
@@ -514,7 +544,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
     return;
   }
   options.flat = lighting_.shade_model == GL_FLAT;
-  options.flat_color = provoking.color[face];
+  options.flat_color = flat_source.color[static_cast<std::size_t>(face)];
   options.offset = polygon_.offset_fill;
   options.offset_factor = polygon_.offset_factor;
   options.offset_units = polygon_.offset_units;
@@ -842,6 +872,7 @@ void Context::glLightModelfv(GLenum pname, const GLfloat* params) {
 }
 
 void Context::set_material_param(GLenum face, GLenum pname, const double* v) {
+  materials_dirty_ = true;
   if (face != GL_FRONT && face != GL_BACK && face != GL_FRONT_AND_BACK) return set_error(GL_INVALID_ENUM);
   if (pname == GL_SHININESS && (v[0] < 0.0 || v[0] > 128.0)) return set_error(GL_INVALID_VALUE);
   for (int f = 0; f < 2; ++f) {

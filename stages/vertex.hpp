@@ -2,6 +2,7 @@
 // rasterization consume.
 #pragma once
 #include <array>
+#include <cstdint>
 
 #include "pipeline/state.hpp"
 
@@ -12,6 +13,10 @@ struct ProcessedVertex {
   Vec4 eye{0.0, 0.0, 0.0, 1.0};   // eye coordinates (user clip planes)
   std::array<Vec4, 2> color{};    // [front, back], clamped and quantised (A4)
   Vec4 tex{0.0, 0.0, 0.0, 1.0};   // after texgen and the texture matrix
+  // Lighting inputs kept until the polygon's facing is known (colour not yet computed).
+  Vec3 normal_eye{0.0};
+  std::uint32_t material_index = 0;
+  bool light_pending = false;
 };
 
 }  // namespace passim
