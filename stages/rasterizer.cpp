@@ -48,7 +48,7 @@ void constant_color_codes(const Vec4& c, const RasterTarget& t, std::uint16_t ou
 }  // namespace
 
 std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits) {
-  const double scale = std::ldexp(1.0, subpixel_bits);
+  const double scale = static_cast<double>(std::int64_t{1} << subpixel_bits);  // 2^bits, exact
   return 2 * static_cast<std::int64_t>(round_half_up(window_coordinate * scale));
 }
 
