@@ -321,6 +321,10 @@ class Context {
                           GLsizei width, GLsizei height);
   void store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
                     const std::vector<double>* depth);
+  TextureLevel* sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
+                                GLsizei height);
+  void read_for_texture(bool depth, int x, int y, int width, int height, std::vector<Rgba>& rgba,
+                        std::vector<double>& values);
   void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
   void read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const;
   void set_tex_parameter(GLenum target, GLenum pname, const double* v);

@@ -225,18 +225,51 @@ void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLs
   tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
 }
 
+TextureLevel* Context::sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset,
+                                       GLsizei width, GLsizei height) {
+  // §3.8.2: the level must exist and the rectangle lie inside it (borders included).
+  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) {
+    set_error(GL_INVALID_ENUM);
+    return nullptr;
+  }
+  TextureObject& tex = *texture_for(target);
+  if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined()) {
+    set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
+    return nullptr;
+  }
+  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  const int b = l.border;
+  if (width < 0 || height < 0 || xoffset < -b || xoffset + width > l.width - b ||
+      (dims == 2 && (yoffset < -b || yoffset + height > l.height - b))) {
+    set_error(GL_INVALID_VALUE);
+    return nullptr;
+  }
+  return &l;
+}
+
+void Context::read_for_texture(bool depth, int x, int y, int width, int height, std::vector<Rgba>& rgba,
+                               std::vector<double>& values) {
+  Counters& c = counters();
+  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  const FramebufferConfig& f = fb_.config;
+  if (depth) {
+    read_framebuffer_depth(x, y, width, height, values);
+    c.depth_bits_read += n * static_cast<std::uint64_t>(f.depth_bits);
+  } else {
+    read_framebuffer_rgba(x, y, width, height, rgba);
+    c.color_bits_read +=
+        n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
+  }
+}
+
 void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
                             GLsizei height, GLenum format, GLenum type, const void* pixels) {
   if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
   if (!is_texture_format(format) || !is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
-  TextureObject& tex = *texture_for(target);
-  if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined())
-    return set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
-  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  TextureLevel* level_ptr = sub_image_level(target, dims, level, xoffset, yoffset, width, height);
+  if (!level_ptr) return;
+  TextureLevel& l = *level_ptr;
   const int b = l.border;
-  if (width < 0 || height < 0 || xoffset < -b || xoffset + width > l.width - b ||
-      (dims == 2 && (yoffset < -b || yoffset + height > l.height - b)))
-    return set_error(GL_INVALID_VALUE);
   if ((format == GL_DEPTH_COMPONENT) != (l.format.base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
   if (width == 0 || height == 0 || !pixels) return;
   std::vector<Rgba> rgba;
@@ -308,17 +341,9 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
   std::vector<Rgba> rgba;
   std::vector<double> depth;
-  if (l.format.base == GL_DEPTH_COMPONENT) read_framebuffer_depth(x, y, l.width, l.height, depth);
-  else read_framebuffer_rgba(x, y, l.width, l.height, rgba);
-  Counters& c = counters();
-  c.color_bits_read += l.format.base == GL_DEPTH_COMPONENT ? 0u
-                       : static_cast<std::uint64_t>(l.width) * static_cast<std::uint64_t>(l.height) *
-                             static_cast<std::uint64_t>(fb_.config.color_bits[0] + fb_.config.color_bits[1] +
-                                                        fb_.config.color_bits[2] + fb_.config.color_bits[3]);
-  if (l.format.base == GL_DEPTH_COMPONENT)
-    c.depth_bits_read += static_cast<std::uint64_t>(l.width) * static_cast<std::uint64_t>(l.height) *
-                         static_cast<std::uint64_t>(fb_.config.depth_bits);
-  store_texels(l, 0, 0, l.width, l.height, rgba, l.format.base == GL_DEPTH_COMPONENT ? &depth : nullptr);
+  const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
+  read_for_texture(is_depth, x, y, l.width, l.height, rgba, depth);
+  store_texels(l, 0, 0, l.width, l.height, rgba, is_depth ? &depth : nullptr);
 }
 
 void Context::glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
@@ -335,27 +360,15 @@ void Context::glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat
 
 void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                                  GLsizei width, GLsizei height) {
-  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
-  TextureObject& tex = *texture_for(target);
-  if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined())
-    return set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
-  TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
+  TextureLevel* level_ptr = sub_image_level(target, dims, level, xoffset, yoffset, width, height);
+  if (!level_ptr) return;
+  TextureLevel& l = *level_ptr;
   const int b = l.border;
-  if (width < 0 || height < 0 || xoffset < -b || xoffset + width > l.width - b ||
-      (dims == 2 && (yoffset < -b || yoffset + height > l.height - b)))
-    return set_error(GL_INVALID_VALUE);
   if (width == 0 || height == 0) return;
   std::vector<Rgba> rgba;
   std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
-  if (is_depth) read_framebuffer_depth(x, y, width, height, depth);
-  else read_framebuffer_rgba(x, y, width, height, rgba);
-  Counters& c = counters();
-  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  if (is_depth) c.depth_bits_read += n * static_cast<std::uint64_t>(fb_.config.depth_bits);
-  else
-    c.color_bits_read += n * static_cast<std::uint64_t>(fb_.config.color_bits[0] + fb_.config.color_bits[1] +
-                                                         fb_.config.color_bits[2] + fb_.config.color_bits[3]);
+  read_for_texture(is_depth, x, y, width, height, rgba, depth);
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba, is_depth ? &depth : nullptr);
 }
 

@@ -37,40 +37,6 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
   }
 }
 
-#if defined(__SSE2__)
-namespace {
-
-struct Lanes {
-  __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), half = _mm_set1_pd(0.5);
-  // MAXPD returns its second operand when the first is NaN: NaN -> 0, as the scalar rule.
-  __m128d clamp(__m128d v) const { return _mm_min_pd(_mm_max_pd(v, zero), one); }
-  __m128i codes(__m128d v, __m128d scale) const {
-    return _mm_cvttpd_epi32(_mm_add_pd(_mm_mul_pd(clamp(v), scale), half));
-  }
-};
-
-inline __m128d centre_offsets(int x, double x_ref) {
-  const __m128d xs = _mm_cvtepi32_pd(_mm_set_epi32(0, 0, x + 1, x));
-  return _mm_sub_pd(_mm_add_pd(xs, _mm_set1_pd(0.5)), _mm_set1_pd(x_ref));
-}
-
-}  // namespace
-
-void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
-  if (scale >= 2147483647.0) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);  // 31-32 bits
-  static const bool avx2 = depth_codes_has_avx2();
-  if (avx2 && n >= 4) return depth_codes_wide(z, offset, x0, x_ref, n, scale, out);
-  const Lanes L;
-  const __m128d row = _mm_set1_pd(z.row), d = _mm_set1_pd(z.d_dx), off = _mm_set1_pd(offset), s = _mm_set1_pd(scale);
-  int i = 0;
-  for (; i + 2 <= n; i += 2) {
-    const __m128d dx = centre_offsets(x0 + i, x_ref);
-    const __m128d v = _mm_add_pd(_mm_add_pd(row, _mm_mul_pd(d, dx)), off);
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + i), L.codes(v, s));
-  }
-  depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
-}
-
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
 namespace {
 // AVX2: four fragments at a time, the same operations as the scalar reference (no FMA:
@@ -151,6 +117,41 @@ void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, i
 }
 #endif
 
+#if defined(__SSE2__)
+namespace {
+
+struct Lanes {
+  __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), half = _mm_set1_pd(0.5);
+  // MAXPD returns its second operand when the first is NaN: NaN -> 0, as the scalar rule.
+  __m128d clamp(__m128d v) const { return _mm_min_pd(_mm_max_pd(v, zero), one); }
+  __m128i codes(__m128d v, __m128d scale) const {
+    return _mm_cvttpd_epi32(_mm_add_pd(_mm_mul_pd(clamp(v), scale), half));
+  }
+};
+
+inline __m128d centre_offsets(int x, double x_ref) {
+  const __m128d xs = _mm_cvtepi32_pd(_mm_set_epi32(0, 0, x + 1, x));
+  return _mm_sub_pd(_mm_add_pd(xs, _mm_set1_pd(0.5)), _mm_set1_pd(x_ref));
+}
+
+}  // namespace
+
+void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
+  if (scale >= 2147483647.0) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);  // 31-32 bits
+  static const bool avx2 = depth_codes_has_avx2();
+  if (avx2 && n >= 4) return depth_codes_wide(z, offset, x0, x_ref, n, scale, out);
+  const Lanes L;
+  const __m128d row = _mm_set1_pd(z.row), d = _mm_set1_pd(z.d_dx), off = _mm_set1_pd(offset), s = _mm_set1_pd(scale);
+  int i = 0;
+  for (; i + 2 <= n; i += 2) {
+    const __m128d dx = centre_offsets(x0 + i, x_ref);
+    const __m128d v = _mm_add_pd(_mm_add_pd(row, _mm_mul_pd(d, dx)), off);
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + i), L.codes(v, s));
+  }
+  depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
+}
+
+
 void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                  std::uint16_t* out) {
   static const bool avx2 = color_codes_has_avx2();
@@ -182,16 +183,6 @@ void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4]
   color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
 }
 #else
-bool color_codes_has_avx2() { return false; }
-void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
-                      std::uint16_t* out) {
-  color_codes_scalar(q, c, scale, x0, x_ref, n, out);
-}
-bool depth_codes_has_avx2() { return false; }
-void depth_codes_wide(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
-                      std::uint32_t* out) {
-  depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
-}
 void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
   depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
 }
