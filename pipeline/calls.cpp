@@ -124,6 +124,7 @@ const std::vector<CallInfo>& table() {
       ROW(glClearDepth, "d", kNone),
       ROW(glClearStencil, "i", kNone),
       ROW(glClearAccum, "ffff", kNone),
+      ROW(glAccum, "ef", kNone),
       ROW(glColorMask, "zzzz", kNone),
       ROW(glDepthMask, "z", kNone),
       ROW(glStencilMask, "u", kNone),

@@ -11,6 +11,7 @@
 
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
+#include "stages/accumulate.hpp"
 #include "stages/clear.hpp"
 
 namespace passim {
@@ -508,6 +509,23 @@ void Context::glClearAccum(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {
   PASSIM_ENTRY(r, g, b, a)
   fb_control_.clear_accum = Vec4(clamp_nan_low(r, -1, 1), clamp_nan_low(g, -1, 1), clamp_nan_low(b, -1, 1),
                                  clamp_nan_low(a, -1, 1));
+}
+
+void Context::glAccum(GLenum op, GLfloat value) {
+  PASSIM_ENTRY(op, value)
+  if (op != GL_ACCUM && op != GL_LOAD && op != GL_RETURN && op != GL_MULT && op != GL_ADD)
+    return set_error(GL_INVALID_ENUM);
+  if (fb_.config.accum_bits == 0) return set_error(GL_INVALID_OPERATION);
+  // §4.2.4: the whole window, or the scissor box when the scissor test is on.
+  AccumRegion region{0, 0, fb_.width(), fb_.height()};
+  if (fragment_.scissor_enabled) {
+    region.x0 = std::clamp(fragment_.scissor_x, 0, fb_.width());
+    region.y0 = std::clamp(fragment_.scissor_y, 0, fb_.height());
+    region.x1 = std::clamp(fragment_.scissor_x + fragment_.scissor_width, region.x0, fb_.width());
+    region.y1 = std::clamp(fragment_.scissor_y + fragment_.scissor_height, region.y0, fb_.height());
+  }
+  accumulate(op, value, region, *color_buffer(pixel_.read_buffer), draw_buffer_ids_, fb_control_.color_mask, fb_,
+             counters());
 }
 
 void Context::glColorMask(GLboolean r, GLboolean g, GLboolean b, GLboolean a) {

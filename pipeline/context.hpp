@@ -67,6 +67,7 @@ class Context {
   void glClearDepth(GLdouble depth);
   void glClearStencil(GLint s);
   void glClearAccum(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
+  void glAccum(GLenum op, GLfloat value);
   void glColorMask(GLboolean r, GLboolean g, GLboolean b, GLboolean a);
   void glDepthMask(GLboolean flag);
   void glStencilMask(GLuint mask);

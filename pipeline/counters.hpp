@@ -44,6 +44,12 @@ struct Counters {
   std::uint64_t stencil_bits_written = 0;
   std::uint64_t accum_bits_read = 0;
   std::uint64_t accum_bits_written = 0;
+  // accumulation buffer: pixels per operation
+  std::uint64_t accum_accum_pixels = 0;
+  std::uint64_t accum_load_pixels = 0;
+  std::uint64_t accum_add_pixels = 0;
+  std::uint64_t accum_mult_pixels = 0;
+  std::uint64_t accum_return_pixels = 0;
   // clears
   std::uint64_t clears = 0;
   std::uint64_t clear_pixels = 0;  // pixels x buffers cleared
@@ -80,6 +86,11 @@ struct Counters {
     PASSIM_COUNTER(stencil_bits_written)
     PASSIM_COUNTER(accum_bits_read)
     PASSIM_COUNTER(accum_bits_written)
+    PASSIM_COUNTER(accum_accum_pixels)
+    PASSIM_COUNTER(accum_load_pixels)
+    PASSIM_COUNTER(accum_add_pixels)
+    PASSIM_COUNTER(accum_mult_pixels)
+    PASSIM_COUNTER(accum_return_pixels)
     PASSIM_COUNTER(clears)
     PASSIM_COUNTER(clear_pixels)
 #undef PASSIM_COUNTER
