@@ -20,6 +20,7 @@
 #include "pipeline/texture.hpp"
 #include "stages/pixel_unpack.hpp"
 #include "stages/fog.hpp"
+#include "stages/pixel_transfer.hpp"
 #include "stages/rasterizer.hpp"
 #include "stages/vertex.hpp"
 
@@ -230,6 +231,20 @@ class Context {
   void glFogi(GLenum pname, GLint param);
   void glFogfv(GLenum pname, const GLfloat* params);
 
+  // ---- raster position and pixel rectangles (§2.12, §3.6, §4.3) ----
+  void glRasterPos2i(GLint x, GLint y);
+  void glRasterPos2f(GLfloat x, GLfloat y);
+  void glRasterPos3f(GLfloat x, GLfloat y, GLfloat z);
+  void glRasterPos4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w);
+  void glRasterPos2d(GLdouble x, GLdouble y);
+  void glRasterPos3d(GLdouble x, GLdouble y, GLdouble z);
+  void glPixelZoom(GLfloat xfactor, GLfloat yfactor);
+  void glPixelTransferf(GLenum pname, GLfloat param);
+  void glPixelTransferi(GLenum pname, GLint param);
+  void glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels);
+  void glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void* pixels);
+  void glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type);
+
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();
 
@@ -287,6 +302,7 @@ class Context {
   std::vector<Mat4>& current_stack();
   void mult_matrix(const Mat4& m);
   void submit_vertex(const Vec4& object_position);
+  ProcessedVertex process_vertex(const Vec4& object_position, Counters& counters);
   double vertex_color(double c, int bits) const;
   void light_pending_vertex(ProcessedVertex& v, int face) const;
   void emit_primitive_vertex(const ProcessedVertex& v);
@@ -335,6 +351,10 @@ class Context {
   void prepare_fragment_stages(TriangleOptions& options);
   FragmentSink& fragment_sink();
   void set_fog(GLenum pname, const double* v);
+  void set_raster_position(const Vec4& object);
+  // Rasterizes a pixel rectangle at the raster position with the zoom rule; colours from
+  // `rgba` (after transfer) or, for depth rectangles, the raster colour with `depth` values.
+  void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth);
 
   Framebuffer fb_;
   MachineProfile profile_;
@@ -372,6 +392,14 @@ class Context {
     PixelStore pack, unpack;
   } pixel_store_;
   FogState fog_;
+  // Table 6.6 (current raster position) and Table 6.17 (pixel transfer, zoom).
+  struct RasterPosState {
+    bool valid = true;
+    RasterVertex window{};
+    Vec4 color{1.0, 1.0, 1.0, 1.0};
+  } raster_;
+  PixelTransferState transfer_;
+  double zoom_x_ = 1.0, zoom_y_ = 1.0;
   FragmentSink* first_stage_ = nullptr;  // where the prepared primitive's fragments go first
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};

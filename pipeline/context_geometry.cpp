@@ -286,6 +286,11 @@ void Context::submit_vertex(const Vec4& object) {
   if (!in_begin_) return;  // §2.6.3: Vertex outside Begin/End is undefined; it is ignored here
   Counters& c = counters();
   ++c.vertices;
+  emit_primitive_vertex(process_vertex(object, c));
+}
+
+ProcessedVertex Context::process_vertex(const Vec4& object, Counters& c) {
+  // §2.10-2.13: transformation, lighting inputs or colour, texture coordinates.
   ProcessedVertex v;
   v.eye = transform_.modelview.back() * object;
   v.clip = transform_.projection.back() * v.eye;
@@ -346,7 +351,7 @@ void Context::submit_vertex(const Vec4& object) {
     }
     v.tex = transform_.texture.back() * tc;
   }
-  emit_primitive_vertex(v);
+  return v;
 }
 
 void Context::light_pending_vertex(ProcessedVertex& v, int face) const {

@@ -199,8 +199,14 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   if (!pixels) return;  // §3.8.1: a NULL image defines the level with unspecified contents (zeros here)
   std::vector<Rgba> rgba;
   std::vector<double> depth;
-  if (format == GL_DEPTH_COMPONENT) unpack_depth(pixels, l.width, l.height, type, pixel_store_.unpack, depth);
-  else unpack_rgba(pixels, l.width, l.height, format, type, pixel_store_.unpack, rgba);
+  // §3.8.1: the DrawPixels path (unpack, pixel transfer) up to the final conversion.
+  if (format == GL_DEPTH_COMPONENT) {
+    unpack_depth(pixels, l.width, l.height, type, pixel_store_.unpack, depth);
+    transfer_depth(depth, transfer_);
+  } else {
+    unpack_rgba(pixels, l.width, l.height, format, type, pixel_store_.unpack, rgba);
+    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
+  }
   store_texels(l, 0, 0, l.width, l.height, rgba, format == GL_DEPTH_COMPONENT ? &depth : nullptr);
 }
 
@@ -252,13 +258,17 @@ void Context::read_for_texture(bool depth, int x, int y, int width, int height, 
   Counters& c = counters();
   const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   const FramebufferConfig& f = fb_.config;
+  c.pixels_read += n;
+  // §3.8.2: texture copies read like CopyPixels, through the pixel-transfer operations.
   if (depth) {
     read_framebuffer_depth(x, y, width, height, values);
     c.depth_bits_read += n * static_cast<std::uint64_t>(f.depth_bits);
+    transfer_depth(values, transfer_);
   } else {
     read_framebuffer_rgba(x, y, width, height, rgba);
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
+    transfer_rgba(rgba, transfer_, transform_.color.back(), c);
   }
 }
 
@@ -274,8 +284,13 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
   if (width == 0 || height == 0 || !pixels) return;
   std::vector<Rgba> rgba;
   std::vector<double> depth;
-  if (format == GL_DEPTH_COMPONENT) unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
-  else unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
+  if (format == GL_DEPTH_COMPONENT) {
+    unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
+    transfer_depth(depth, transfer_);
+  } else {
+    unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
+    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
+  }
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba,
                format == GL_DEPTH_COMPONENT ? &depth : nullptr);
 }

@@ -44,6 +44,12 @@ struct Counters {
   std::uint64_t stencil_bits_written = 0;
   std::uint64_t accum_bits_read = 0;
   std::uint64_t accum_bits_written = 0;
+  // pixel rectangles and transfer
+  std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
+  std::uint64_t pixels_scale_bias = 0;
+  std::uint64_t pixels_color_matrix = 0;
+  std::uint64_t pixels_drawn = 0;          // groups drawn by DrawPixels / CopyPixels (before zoom)
+  std::uint64_t pixels_read = 0;           // groups read by ReadPixels / CopyPixels / texture copies
   // accumulation buffer: pixels per operation
   std::uint64_t accum_accum_pixels = 0;
   std::uint64_t accum_load_pixels = 0;
@@ -86,6 +92,11 @@ struct Counters {
     PASSIM_COUNTER(stencil_bits_written)
     PASSIM_COUNTER(accum_bits_read)
     PASSIM_COUNTER(accum_bits_written)
+    PASSIM_COUNTER(pixels_transferred)
+    PASSIM_COUNTER(pixels_scale_bias)
+    PASSIM_COUNTER(pixels_color_matrix)
+    PASSIM_COUNTER(pixels_drawn)
+    PASSIM_COUNTER(pixels_read)
     PASSIM_COUNTER(accum_accum_pixels)
     PASSIM_COUNTER(accum_load_pixels)
     PASSIM_COUNTER(accum_add_pixels)

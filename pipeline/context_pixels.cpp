@@ -1,0 +1,261 @@
+// Context: the current raster position (§2.12) and pixel rectangles (§3.6, §4.3):
+// glDrawPixels, glReadPixels, glCopyPixels, glPixelZoom, glPixelTransfer.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/context.hpp"
+#include "pipeline/context_scratch.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "stages/clipping.hpp"
+#include "stages/pixel_pack.hpp"
+#include "stages/pixel_transfer.hpp"
+
+namespace passim {
+
+// ---------------------------------------------------------------- raster position (§2.12)
+
+void Context::set_raster_position(const Vec4& object) {
+  Counters& c = counters();
+  ProcessedVertex v = process_vertex(object, c);
+  ClipPlanes planes;
+  planes.user = transform_.clip_plane;
+  for (int k = 0; k < 6; ++k)
+    if (transform_.clip_enabled[k]) planes.user_enabled |= 1u << k;
+  const bool finite = std::isfinite(v.clip.x) && std::isfinite(v.clip.y) && std::isfinite(v.clip.z) &&
+                      std::isfinite(v.clip.w);
+  // Clipped as a point: outside the clip volume the raster position becomes invalid.
+  if (!finite || !point_inside(v, planes)) {
+    raster_.valid = false;
+    return;
+  }
+  if (v.light_pending) light_pending_vertex(v, 0);
+  raster_.valid = true;
+  raster_.window = to_window(v, 0);
+  raster_.color = v.color[0];
+}
+
+void Context::glRasterPos2i(GLint x, GLint y) { PASSIM_ENTRY(x, y) set_raster_position(Vec4(x, y, 0.0, 1.0)); }
+void Context::glRasterPos2f(GLfloat x, GLfloat y) { PASSIM_ENTRY(x, y) set_raster_position(Vec4(x, y, 0.0, 1.0)); }
+void Context::glRasterPos3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) set_raster_position(Vec4(x, y, z, 1.0)); }
+void Context::glRasterPos4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_ENTRY(x, y, z, w) set_raster_position(Vec4(x, y, z, w)); }
+void Context::glRasterPos2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) set_raster_position(Vec4(x, y, 0.0, 1.0)); }
+void Context::glRasterPos3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) set_raster_position(Vec4(x, y, z, 1.0)); }
+
+void Context::glPixelZoom(GLfloat xfactor, GLfloat yfactor) {
+  PASSIM_ENTRY(xfactor, yfactor)
+  zoom_x_ = xfactor;
+  zoom_y_ = yfactor;
+}
+
+void Context::glPixelTransferf(GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(pname, param)
+  PixelTransferState& t = transfer_;
+  const double v = param;
+  switch (pname) {
+    case GL_RED_SCALE: t.scale.r = v; break;
+    case GL_GREEN_SCALE: t.scale.g = v; break;
+    case GL_BLUE_SCALE: t.scale.b = v; break;
+    case GL_ALPHA_SCALE: t.scale.a = v; break;
+    case GL_RED_BIAS: t.bias.r = v; break;
+    case GL_GREEN_BIAS: t.bias.g = v; break;
+    case GL_BLUE_BIAS: t.bias.b = v; break;
+    case GL_ALPHA_BIAS: t.bias.a = v; break;
+    case GL_DEPTH_SCALE: t.depth_scale = v; break;
+    case GL_DEPTH_BIAS: t.depth_bias = v; break;
+    case GL_POST_COLOR_MATRIX_RED_SCALE: t.post_color_matrix_scale.r = v; break;
+    case GL_POST_COLOR_MATRIX_GREEN_SCALE: t.post_color_matrix_scale.g = v; break;
+    case GL_POST_COLOR_MATRIX_BLUE_SCALE: t.post_color_matrix_scale.b = v; break;
+    case GL_POST_COLOR_MATRIX_ALPHA_SCALE: t.post_color_matrix_scale.a = v; break;
+    case GL_POST_COLOR_MATRIX_RED_BIAS: t.post_color_matrix_bias.r = v; break;
+    case GL_POST_COLOR_MATRIX_GREEN_BIAS: t.post_color_matrix_bias.g = v; break;
+    case GL_POST_COLOR_MATRIX_BLUE_BIAS: t.post_color_matrix_bias.b = v; break;
+    case GL_POST_COLOR_MATRIX_ALPHA_BIAS: t.post_color_matrix_bias.a = v; break;
+    case GL_MAP_COLOR:
+      t.map_color = v != 0.0;
+      if (t.map_color) warn_once("GL_MAP_COLOR is on, but pixel maps are not modelled yet: it has no effect");
+      break;
+    case GL_MAP_STENCIL: t.map_stencil = v != 0.0; break;
+    case GL_INDEX_SHIFT: t.index_shift = static_cast<int>(v); break;
+    case GL_INDEX_OFFSET: t.index_offset = static_cast<int>(v); break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glPixelTransferi(GLenum pname, GLint param) {
+  PASSIM_ENTRY(pname, param)
+  glPixelTransferf(pname, static_cast<GLfloat>(param));
+}
+
+// ---------------------------------------------------------------- rectangles to fragments (§3.6.4)
+
+void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
+                                   const std::vector<double>* depth) {
+  Counters& c = counters();
+  c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  TriangleOptions options;
+  prepare_fragment_stages(options);
+  FragmentSink& sink = fragment_sink();
+  const RasterVertex& rp = raster_.window;
+  // A20: the raster position is rounded (⌊x + ½⌋), then group (i, j) covers
+  // [x + zx·i, x + zx·(i+1)) × [y + zy·j, y + zy·(j+1)); a fragment is produced for each pixel
+  // whose centre lies inside or on the bottom/left boundary.
+  const double xr = round_half_up(rp.x), yr = round_half_up(rp.y);
+  const double zx = zoom_x_, zy = zoom_y_;
+  auto pixel_range = [](double a, double b, int limit, int& lo, int& hi) {
+    const double mn = std::min(a, b), mx = std::max(a, b);
+    lo = std::max(0, static_cast<int>(std::ceil(mn - 0.5)));
+    hi = std::min(limit - 1, static_cast<int>(std::ceil(mx - 0.5)) - 1);
+  };
+  const std::uint32_t z_code = fb_.config.depth_bits ? float_to_fixed(rp.z, fb_.config.depth_bits) : 0;
+  std::uint16_t raster_codes[4];
+  for (int k = 0; k < 4; ++k) raster_codes[k] = static_cast<std::uint16_t>(float_to_fixed(raster_.color[k], fragment_bits_[k]));
+  const double s = rp.tex[0] / rp.tex[3], t = rp.tex[1] / rp.tex[3], r = rp.tex[2] / rp.tex[3];
+  SpanBuffers& buf = scratch_->spans;
+  for (int j = 0; j < height; ++j) {
+    int row_lo, row_hi;
+    pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), row_lo, row_hi);
+    for (int y = row_lo; y <= row_hi; ++y) {
+      // Gather the fragments of this window row in increasing x.
+      int count = 0, x_first = 0;
+      FragmentSpan span = buf.span(y, 0, 0);
+      for (int step = 0; step < width; ++step) {
+        const int i = zx >= 0 ? step : width - 1 - step;
+        int lo, hi;
+        pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
+        for (int x = lo; x <= hi; ++x) {
+          if (count == 0) x_first = x;
+          const std::size_t src = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);
+          std::uint16_t* out = span.rgba + 4 * count;
+          if (rgba) {
+            // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point.
+            for (int k = 0; k < 4; ++k)
+              out[k] = static_cast<std::uint16_t>(float_to_fixed((*rgba)[src][static_cast<std::size_t>(k)], fragment_bits_[k]));
+            span.depth[count] = z_code;
+          } else {
+            for (int k = 0; k < 4; ++k) out[k] = raster_codes[k];
+            span.depth[count] = fb_.config.depth_bits ? float_to_fixed((*depth)[src], fb_.config.depth_bits) : 0;
+          }
+          span.s[count] = s;
+          span.t[count] = t;
+          span.r[count] = r;
+          span.lambda[count] = 0.0;  // ρ = 1 for pixel rectangles
+          span.fog[count] = std::fabs(rp.eye_z);
+          ++count;
+        }
+      }
+      if (count == 0) continue;
+      span.x0 = x_first;
+      span.count = count;
+      c.fragments_generated += static_cast<std::uint64_t>(count);
+      sink.process(span);
+    }
+  }
+}
+
+namespace {
+bool is_color_format(GLenum f) {
+  switch (f) {
+    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_RGB: case GL_RGBA: case GL_BGR: case GL_BGRA:
+    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA:
+      return true;
+    default: return false;
+  }
+}
+}  // namespace
+
+void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels) {
+  PASSIM_ENTRY(width, height, format, type,
+               RawArrayArg{pixels, type,
+                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
+                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
+                                     static_cast<std::size_t>(type_size(type))
+                               : 0u})
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  if (format == GL_STENCIL_INDEX || format == GL_COLOR_INDEX) {
+    if (format == GL_STENCIL_INDEX && fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
+    warn_once(fmt::format("glDrawPixels with {} is not modelled yet: ignored", enum_name(format)));
+    return;
+  }
+  if (format != GL_DEPTH_COMPONENT && !is_color_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
+  if (!raster_.valid || width == 0 || height == 0 || !pixels) return;  // §3.6.4: invalid raster position: nothing
+  if (format == GL_DEPTH_COMPONENT) {
+    std::vector<double> depth;
+    unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
+    transfer_depth(depth, transfer_);
+    draw_pixel_rectangle(width, height, nullptr, &depth);
+  } else {
+    std::vector<Rgba> rgba;
+    unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
+    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
+    draw_pixel_rectangle(width, height, &rgba, nullptr);
+  }
+}
+
+void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type,
+                           void* pixels) {
+  PASSIM_ENTRY()
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  if (format == GL_COLOR_INDEX) return set_error(GL_INVALID_OPERATION);  // RGBA mode
+  if (format == GL_STENCIL_INDEX) {
+    if (fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
+    warn_once("glReadPixels with GL_STENCIL_INDEX is not modelled yet: nothing is written");
+    return;
+  }
+  if (format != GL_DEPTH_COMPONENT && !is_color_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
+  if (width == 0 || height == 0) return;
+  Counters& c = counters();
+  c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  std::vector<Rgba> out;
+  if (format == GL_DEPTH_COMPONENT) {
+    std::vector<double> depth;
+    read_framebuffer_depth(x, y, width, height, depth);
+    transfer_depth(depth, transfer_);
+    out.resize(depth.size());
+    for (std::size_t p = 0; p < depth.size(); ++p) out[p] = {depth[p], 0, 0, 1};
+  } else {
+    read_framebuffer_rgba(x, y, width, height, out);
+    transfer_rgba(out, transfer_, transform_.color.back(), c);
+    // §4.3.2: luminance is R + G + B (unweighted), clamped by the packing.
+    if (format == GL_LUMINANCE || format == GL_LUMINANCE_ALPHA)
+      for (Rgba& p : out) p[0] = p[0] + p[1] + p[2];
+  }
+  pack_rgba(out, width, height, format, type, pixel_store_.pack, pixels);
+}
+
+void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type) {
+  PASSIM_ENTRY(x, y, width, height, type)
+  if (type != GL_COLOR && type != GL_DEPTH && type != GL_STENCIL) return set_error(GL_INVALID_ENUM);
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  if ((type == GL_DEPTH && fb_.config.depth_bits == 0) || (type == GL_STENCIL && fb_.config.stencil_bits == 0))
+    return set_error(GL_INVALID_OPERATION);
+  if (type == GL_STENCIL) {
+    warn_once("glCopyPixels(GL_STENCIL) is not modelled yet: ignored");
+    return;
+  }
+  if (!raster_.valid || width == 0 || height == 0) return;
+  Counters& c = counters();
+  c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  // A22: the whole source is read (through the transfer operations, once) before drawing.
+  if (type == GL_DEPTH) {
+    std::vector<double> depth;
+    read_framebuffer_depth(x, y, width, height, depth);
+    c.depth_bits_read += depth.size() * static_cast<std::uint64_t>(fb_.config.depth_bits);
+    transfer_depth(depth, transfer_);
+    draw_pixel_rectangle(width, height, nullptr, &depth);
+  } else {
+    std::vector<Rgba> rgba;
+    read_framebuffer_rgba(x, y, width, height, rgba);
+    const auto& b = fb_.config.color_bits;
+    c.color_bits_read += rgba.size() * static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
+    transfer_rgba(rgba, transfer_, transform_.color.back(), c);
+    draw_pixel_rectangle(width, height, &rgba, nullptr);
+  }
+}
+
+}  // namespace passim
