@@ -270,6 +270,12 @@ const std::vector<CallInfo>& table() {
       ROW(glDrawPixels, "iieeV*", kNone),
       ROW(glReadPixels, "iiiieeO", kQuery),
       ROW(glCopyPixels, "iiiie", kNone),
+      // imaging: colour tables
+      ROW(glColorTable, "eeieeV*", kNone),
+      ROW(glColorSubTable, "eiieeV*", kNone),
+      ROW(glCopyColorTable, "eeiii", kNone),
+      ROW(glColorTableParameterfv, "eeF4", kNone),
+      ROW(glGetColorTableParameteriv, "eeO", kQuery),
       // fog
       ROW(glFogf, "ey", kNone),
       ROW(glFogi, "ex", kNone),

@@ -161,6 +161,9 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_DITHER: fragment_.dither = v; return true;  // A3: no effect on the bits
     case GL_COLOR_LOGIC_OP: fragment_.logic_op_enabled = v; return true;
     case GL_FOG: fog_.enabled = v; return true;
+    case GL_COLOR_TABLE: transfer_.tables[kColorTable].enabled = v; return true;
+    case GL_POST_CONVOLUTION_COLOR_TABLE: transfer_.tables[kPostConvolutionTable].enabled = v; return true;
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: transfer_.tables[kPostColorMatrixTable].enabled = v; return true;
     case GL_TEXTURE_1D: textures_.enabled_1d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
     case GL_TEXTURE_2D: textures_.enabled_2d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
     case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
@@ -175,9 +178,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POLYGON_STIPPLE:
     case GL_TEXTURE_3D:
     case GL_AUTO_NORMAL:
-    case GL_COLOR_TABLE:
-    case GL_POST_CONVOLUTION_COLOR_TABLE:
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
     case GL_CONVOLUTION_1D:
     case GL_CONVOLUTION_2D:
     case GL_SEPARABLE_2D:
@@ -270,8 +270,10 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_FOG_END: return one(fog_.end);
     case GL_FOG_COLOR: return color(fog_.color);
     case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE:
-    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
+    case GL_COLOR_TABLE: return one(transfer_.tables[kColorTable].enabled);
+    case GL_POST_CONVOLUTION_COLOR_TABLE: return one(transfer_.tables[kPostConvolutionTable].enabled);
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return one(transfer_.tables[kPostColorMatrixTable].enabled);
+    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
     case GL_SEPARABLE_2D: case GL_HISTOGRAM: case GL_MINMAX:
       return one(0.0);
     // transformation

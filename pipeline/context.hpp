@@ -245,6 +245,14 @@ class Context {
   void glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void* pixels);
   void glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type);
 
+  // ---- imaging subset: colour tables (ARB_imaging) ----
+  void glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
+                    const void* table);
+  void glColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format, GLenum type, const void* data);
+  void glCopyColorTable(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width);
+  void glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params);
+  void glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* params);
+
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();
 
@@ -352,6 +360,8 @@ class Context {
   FragmentSink& fragment_sink();
   void set_fog(GLenum pname, const double* v);
   void set_raster_position(const Vec4& object);
+  void define_color_table(int index, GLenum internalformat, int width, int start, const std::vector<Rgba>& rgba);
+  bool check_table_format(GLenum internalformat);
   // Rasterizes a pixel rectangle at the raster position with the zoom rule; colours from
   // `rgba` (after transfer) or, for depth rectangles, the raster colour with `depth` values.
   void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth);

@@ -48,6 +48,9 @@ struct Counters {
   std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
   std::uint64_t pixels_scale_bias = 0;
   std::uint64_t pixels_color_matrix = 0;
+  std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE
+  std::uint64_t post_convolution_table_lookups = 0;
+  std::uint64_t post_color_matrix_table_lookups = 0;
   std::uint64_t pixels_drawn = 0;          // groups drawn by DrawPixels / CopyPixels (before zoom)
   std::uint64_t pixels_read = 0;           // groups read by ReadPixels / CopyPixels / texture copies
   // accumulation buffer: pixels per operation
@@ -95,6 +98,9 @@ struct Counters {
     PASSIM_COUNTER(pixels_transferred)
     PASSIM_COUNTER(pixels_scale_bias)
     PASSIM_COUNTER(pixels_color_matrix)
+    PASSIM_COUNTER(color_table_lookups)
+    PASSIM_COUNTER(post_convolution_table_lookups)
+    PASSIM_COUNTER(post_color_matrix_table_lookups)
     PASSIM_COUNTER(pixels_drawn)
     PASSIM_COUNTER(pixels_read)
     PASSIM_COUNTER(accum_accum_pixels)

@@ -735,6 +735,8 @@ class Replayer {
     else if (fn == "glTexImage2D") { w = static_cast<int>(v[3].i); h = static_cast<int>(v[4].i); format = 6; type = 7; data = 8; }
     else if (fn == "glTexSubImage1D") { w = static_cast<int>(v[3].i); format = 4; type = 5; data = 6; }
     else if (fn == "glTexSubImage2D") { w = static_cast<int>(v[4].i); h = static_cast<int>(v[5].i); format = 6; type = 7; data = 8; }
+    else if (fn == "glColorTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
+    else if (fn == "glColorSubTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
     else if (fn == "glDrawPixels") { w = static_cast<int>(v[0].i); h = static_cast<int>(v[1].i); format = 2; type = 3; data = 4; }
     else return;
     const GLenum f = static_cast<GLenum>(v[format].i), t = static_cast<GLenum>(v[type].i);

@@ -1,14 +1,48 @@
 #include "stages/pixel_transfer.hpp"
 
+#include "pipeline/fixed_point.hpp"
+
 namespace passim {
+
+void color_table_lookup(const ColorTable& t, Rgba& c) {
+  const std::size_t w = t.entries.size();
+  if (w == 0) return;
+  auto at = [&](int k) {
+    const double v = clamp_nan_low(c[static_cast<std::size_t>(k)], 0.0, 1.0);
+    return static_cast<std::size_t>(round_half_up(v * static_cast<double>(w - 1)));
+  };
+  const std::size_t r = at(0), g = at(1), b = at(2), a = at(3);
+  switch (t.base) {
+    case GL_ALPHA: c[3] = t.entries[a][3]; break;
+    case GL_LUMINANCE: c[0] = t.entries[r][0]; c[1] = t.entries[g][0]; c[2] = t.entries[b][0]; break;
+    case GL_LUMINANCE_ALPHA:
+      c[0] = t.entries[r][0]; c[1] = t.entries[g][0]; c[2] = t.entries[b][0]; c[3] = t.entries[a][3];
+      break;
+    case GL_INTENSITY:
+      c[0] = t.entries[r][0]; c[1] = t.entries[g][0]; c[2] = t.entries[b][0]; c[3] = t.entries[a][0];
+      break;
+    case GL_RGB: c[0] = t.entries[r][0]; c[1] = t.entries[g][1]; c[2] = t.entries[b][2]; break;
+    default:
+      c[0] = t.entries[r][0]; c[1] = t.entries[g][1]; c[2] = t.entries[b][2]; c[3] = t.entries[a][3];
+      break;
+  }
+}
 
 void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& s, const Mat4& m, Counters& counters) {
   const bool scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
   const bool matrix = m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
+  const ColorTable& t0 = s.tables[kColorTable];
+  const ColorTable& t1 = s.tables[kPostConvolutionTable];
+  const ColorTable& t2 = s.tables[kPostColorMatrixTable];
+  const bool use0 = t0.enabled && !t0.entries.empty(), use1 = t1.enabled && !t1.entries.empty();
+  const bool use2 = t2.enabled && !t2.entries.empty();
   for (Rgba& p : pixels) {
     // §3.6.5 step 2: c = c·scale + bias, no clamp.
     if (scale_bias)
       for (int k = 0; k < 4; ++k) p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.scale[k] + s.bias[k];
+    // Step 4: COLOR_TABLE. (Step 5, convolution, is not modelled yet.) Step 6: POST_CONVOLUTION_COLOR_TABLE.
+    if (use0) color_table_lookup(t0, p);
+    if (use1) color_table_lookup(t1, p);
     // Steps 7: colour matrix, then its post scale and bias (ARB_imaging).
     if (matrix) {
       const Vec4 c(p[0], p[1], p[2], p[3]);
@@ -16,10 +50,15 @@ void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& s, const
       for (int k = 0; k < 4; ++k)
         p[static_cast<std::size_t>(k)] = r[k] * s.post_color_matrix_scale[k] + s.post_color_matrix_bias[k];
     }
+    // Step 8: POST_COLOR_MATRIX_COLOR_TABLE.
+    if (use2) color_table_lookup(t2, p);
   }
   const std::uint64_t n = pixels.size();
   if (scale_bias) counters.pixels_scale_bias += n;
   if (matrix) counters.pixels_color_matrix += n;
+  if (use0) counters.color_table_lookups += n;
+  if (use1) counters.post_convolution_table_lookups += n;
+  if (use2) counters.post_color_matrix_table_lookups += n;
   counters.pixels_transferred += n;
 }
 

@@ -2,6 +2,7 @@
 // RGBA scale and bias, the colour matrix with its post scale and bias, depth scale and bias.
 // No clamp anywhere in between (clamping happens at the final conversion).
 #pragma once
+#include <array>
 #include <vector>
 
 #include "pipeline/counters.hpp"
@@ -10,6 +11,18 @@
 
 namespace passim {
 
+// A colour table (ARB_imaging §3.6.3). Entries are kept as reals after their scale, bias
+// and clamp (A24: no quantisation); a LUMINANCE or INTENSITY entry is kept in [0].
+struct ColorTable {
+  bool enabled = false;
+  GLenum internal_format = GL_RGBA;
+  GLenum base = GL_RGBA;
+  std::vector<Rgba> entries;  // width = entries.size()
+  Vec4 scale{1.0, 1.0, 1.0, 1.0}, bias{0.0, 0.0, 0.0, 0.0};
+};
+
+enum ColorTableIndex { kColorTable = 0, kPostConvolutionTable = 1, kPostColorMatrixTable = 2 };
+
 // Table 6.17 (pixel transfer).
 struct PixelTransferState {
   Vec4 scale{1.0, 1.0, 1.0, 1.0}, bias{0.0, 0.0, 0.0, 0.0};
@@ -17,7 +30,12 @@ struct PixelTransferState {
   bool map_color = false, map_stencil = false;
   int index_shift = 0, index_offset = 0;
   Vec4 post_color_matrix_scale{1.0, 1.0, 1.0, 1.0}, post_color_matrix_bias{0.0, 0.0, 0.0, 0.0};
+  std::array<ColorTable, 3> tables{};  // COLOR_TABLE, POST_CONVOLUTION_, POST_COLOR_MATRIX_
 };
+
+// §3.6.5 step 4/6/8: the components the table's base format replaces are looked up at
+// round(clamp(c, 0, 1)·(W − 1)) (Table 3.13); the others pass unchanged and unclamped.
+void color_table_lookup(const ColorTable& table, Rgba& c);
 
 // Applies the RGBA transfer operations to every group, in place.
 void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& state, const Mat4& color_matrix,

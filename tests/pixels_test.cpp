@@ -114,3 +114,63 @@ TEST(Pixels, Errors) {
   ctx.glPixelTransferf(GL_TEXTURE_2D, 1.0f);
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
 }
+
+TEST(Imaging, PaperFigure4CountsShadowedChannelsInAlpha) {
+  // §3 of Brabec & Seidel: a colour table sends 0 -> 0 and anything above 0 -> 64/255
+  // (63/255 in alpha), then the colour matrix sums the four channels into alpha. For each of
+  // the 16 combinations of set channels the alpha code is 64·(R + G + B set) + 63·(A set):
+  // 0 for none, 255 for all four. At 12 bits the constants are 1024 and 1023 -> 4095.
+  for (int bits : {8, 12}) {
+    const int levels = 1 << bits;
+    const std::uint32_t full = static_cast<std::uint32_t>(levels - 1);
+    const std::uint32_t quarter = static_cast<std::uint32_t>(levels / 4);  // 64 or 1024
+    Context ctx(test::small_config(16, 2, bits));
+    test::window_projection(ctx);
+    // Source row: pixel m has channel k set (to the largest code) when bit k of m is set.
+    std::vector<GLushort> src(16 * 4);
+    for (int m = 0; m < 16; ++m)
+      for (int k = 0; k < 4; ++k) src[static_cast<std::size_t>(4 * m + k)] = (m >> k) & 1 ? 65535 : 0;
+    ctx.glRasterPos2i(0, 0);
+    ctx.glDrawPixels(16, 1, GL_RGBA, GL_UNSIGNED_SHORT, src.data());
+    // The table, one entry per code: entry 0 is 0, every other entry (q, q, q, q − 1)/(2^n − 1).
+    std::vector<GLfloat> table(static_cast<std::size_t>(4 * levels), 0.0f);
+    for (int i = 1; i < levels; ++i) {
+      for (int k = 0; k < 3; ++k) table[static_cast<std::size_t>(4 * i + k)] = static_cast<float>(quarter) / static_cast<float>(full);
+      table[static_cast<std::size_t>(4 * i + 3)] = static_cast<float>(quarter - 1) / static_cast<float>(full);
+    }
+    ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, levels, GL_RGBA, GL_FLOAT, table.data());
+    ctx.glEnable(GL_COLOR_TABLE);
+    const double m[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 0, 1};  // A' = R + G + B + A
+    ctx.glMatrixMode(GL_COLOR);
+    ctx.glLoadMatrixd(m);
+    ctx.glRasterPos2i(0, 1);
+    ctx.glCopyPixels(0, 0, 16, 1, GL_COLOR);
+    EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    for (int mask = 0; mask < 16; ++mask) {
+      const std::uint32_t rgb_set = static_cast<std::uint32_t>((mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1));
+      const std::uint32_t expected = quarter * rgb_set + ((mask >> 3) & 1 ? quarter - 1 : 0);
+      EXPECT_EQ(pixel(ctx, mask, 1)[3], expected) << "bits " << bits << " mask " << mask;
+    }
+    EXPECT_EQ(pixel(ctx, 15, 1)[3], full);
+    EXPECT_EQ(ctx.total_counters().color_table_lookups, 16u);
+  }
+}
+
+TEST(Imaging, ColorTableErrorsAndLimits) {
+  Context ctx(test::small_config(2, 2));
+  const GLubyte t[12] = {0};
+  ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, 3, GL_RGBA, GL_UNSIGNED_BYTE, t);  // not a power of two
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  ctx.glColorTable(GL_COLOR_TABLE, 4, 2, GL_RGBA, GL_UNSIGNED_BYTE, t);  // 1-4 are not accepted
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  ctx.glColorTable(GL_TEXTURE_2D, GL_RGBA, 2, GL_RGBA, GL_UNSIGNED_BYTE, t);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, 1 << 17, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);  // over the limit
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_TABLE_TOO_LARGE));
+  ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, 2, GL_RGBA, GL_UNSIGNED_BYTE, t);
+  ctx.glColorSubTable(GL_COLOR_TABLE, 1, 2, GL_RGBA, GL_UNSIGNED_BYTE, t);  // 1 + 2 > 2
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  GLint w = 0;
+  ctx.glGetColorTableParameteriv(GL_COLOR_TABLE, GL_COLOR_TABLE_WIDTH, &w);
+  EXPECT_EQ(w, 2);
+}

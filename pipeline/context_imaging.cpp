@@ -1,0 +1,135 @@
+// Context: the imaging subset's colour tables (ARB_imaging, §3.6.3 of GL 1.2.1).
+#include <fmt/format.h>
+
+#include "pipeline/context.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "pipeline/texture.hpp"
+
+namespace passim {
+
+namespace {
+int table_index(GLenum target) {
+  switch (target) {
+    case GL_COLOR_TABLE: return kColorTable;
+    case GL_POST_CONVOLUTION_COLOR_TABLE: return kPostConvolutionTable;
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return kPostColorMatrixTable;
+    default: return -1;
+  }
+}
+bool is_power_of_two_or_zero(int v) { return v >= 0 && (v & (v - 1)) == 0; }
+}  // namespace
+
+void Context::define_color_table(int index, GLenum internalformat, int width, int start, const std::vector<Rgba>& rgba) {
+  ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  if (start < 0) {  // a whole new table
+    t.internal_format = internalformat;
+    t.base = internal_format(static_cast<GLint>(internalformat))->base;
+    t.entries.assign(static_cast<std::size_t>(width), Rgba{0, 0, 0, 0});
+    start = 0;
+  }
+  // §3.6.3: ×COLOR_TABLE_SCALE + COLOR_TABLE_BIAS, clamp to [0, 1]; the base format's
+  // components are kept (L and I in [0]).
+  for (int i = 0; i < width; ++i) {
+    Rgba c = rgba[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 4; ++k)
+      c[static_cast<std::size_t>(k)] = clamp_nan_low(c[static_cast<std::size_t>(k)] * t.scale[k] + t.bias[k], 0.0, 1.0);
+    t.entries[static_cast<std::size_t>(start + i)] = c;
+  }
+}
+
+bool Context::check_table_format(GLenum internalformat) {
+  const auto f = internal_format(static_cast<GLint>(internalformat));
+  if (!f || f->base == GL_DEPTH_COMPONENT || (internalformat >= 1 && internalformat <= 4)) {
+    set_error(GL_INVALID_ENUM);
+    return false;
+  }
+  return true;
+}
+
+void Context::glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
+                           const void* table) {
+  PASSIM_ENTRY(target, internalformat, width, format, type,
+               RawArrayArg{table, type, table && width > 0 && format_components(format) > 0 && type_size(type) > 0
+                                            ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
+                                                  static_cast<std::size_t>(type_size(type))
+                                            : 0u})
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  if (!check_table_format(internalformat)) return;
+  if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || format == GL_STENCIL_INDEX ||
+      format == GL_COLOR_INDEX || !is_pixel_type(type))
+    return set_error(GL_INVALID_ENUM);
+  if (!is_power_of_two_or_zero(width)) return set_error(GL_INVALID_VALUE);
+  if (width > profile_.limits.max_color_table_width) return set_error(GL_TABLE_TOO_LARGE);
+  std::vector<Rgba> rgba(static_cast<std::size_t>(width), Rgba{0, 0, 0, 1});
+  // No pixel-transfer operations apply to the table's own definition.
+  if (table && width > 0) unpack_rgba(table, width, 1, format, type, pixel_store_.unpack, rgba);
+  define_color_table(index, internalformat, width, -1, rgba);
+}
+
+void Context::glColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format, GLenum type,
+                              const void* data) {
+  PASSIM_ENTRY(target, start, count, format, type,
+               RawArrayArg{data, type, data && count > 0 && format_components(format) > 0 && type_size(type) > 0
+                                           ? image_bytes(count, 1, format, type, pixel_store_.unpack) /
+                                                 static_cast<std::size_t>(type_size(type))
+                                           : 0u})
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
+    return set_error(GL_INVALID_ENUM);
+  const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  // A16: entries start .. start + count − 1 (the spec's "count + n" is a typo).
+  if (start < 0 || count < 0 || static_cast<std::size_t>(start) + static_cast<std::size_t>(count) > t.entries.size())
+    return set_error(GL_INVALID_VALUE);
+  if (count == 0 || !data) return;
+  std::vector<Rgba> rgba;
+  unpack_rgba(data, count, 1, format, type, pixel_store_.unpack, rgba);
+  define_color_table(index, t.internal_format, count, start, rgba);
+}
+
+void Context::glCopyColorTable(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width) {
+  PASSIM_ENTRY(target, internalformat, x, y, width)
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  if (!check_table_format(internalformat)) return;
+  if (!is_power_of_two_or_zero(width)) return set_error(GL_INVALID_VALUE);
+  if (width > profile_.limits.max_color_table_width) return set_error(GL_TABLE_TOO_LARGE);
+  std::vector<Rgba> rgba;
+  read_framebuffer_rgba(x, y, width, 1, rgba);
+  counters().pixels_read += static_cast<std::uint64_t>(width);
+  define_color_table(index, internalformat, width, -1, rgba);
+}
+
+void Context::glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
+  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, 4})
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  const Vec4 v(params[0], params[1], params[2], params[3]);
+  if (pname == GL_COLOR_TABLE_SCALE) t.scale = v;
+  else if (pname == GL_COLOR_TABLE_BIAS) t.bias = v;
+  else set_error(GL_INVALID_ENUM);
+}
+
+void Context::glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* params) {
+  PASSIM_ENTRY()
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  const auto f = internal_format(static_cast<GLint>(t.internal_format));
+  switch (pname) {
+    case GL_COLOR_TABLE_WIDTH: params[0] = static_cast<GLint>(t.entries.size()); break;
+    case GL_COLOR_TABLE_FORMAT: params[0] = static_cast<GLint>(t.internal_format); break;
+    // A24: the sizes reported are those of the requested format (the table itself is kept as reals).
+    case GL_COLOR_TABLE_RED_SIZE: params[0] = f->red; break;
+    case GL_COLOR_TABLE_GREEN_SIZE: params[0] = f->green; break;
+    case GL_COLOR_TABLE_BLUE_SIZE: params[0] = f->blue; break;
+    case GL_COLOR_TABLE_ALPHA_SIZE: params[0] = f->alpha; break;
+    case GL_COLOR_TABLE_LUMINANCE_SIZE: params[0] = f->luminance; break;
+    case GL_COLOR_TABLE_INTENSITY_SIZE: params[0] = f->intensity; break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+}  // namespace passim
