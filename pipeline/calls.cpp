@@ -276,6 +276,12 @@ const std::vector<CallInfo>& table() {
       ROW(glCopyColorTable, "eeiii", kNone),
       ROW(glColorTableParameterfv, "eeF4", kNone),
       ROW(glGetColorTableParameteriv, "eeO", kQuery),
+      ROW(glConvolutionFilter1D, "eeieeV*", kNone),
+      ROW(glConvolutionFilter2D, "eeiieeV*", kNone),
+      ROW(glSeparableFilter2D, "eeiieeV*V*", kNone),
+      ROW(glCopyConvolutionFilter2D, "eeiiii", kNone),
+      ROW(glConvolutionParameteri, "eex", kNone),
+      ROW(glConvolutionParameterfv, "eeFp", kNone),
       // fog
       ROW(glFogf, "ey", kNone),
       ROW(glFogi, "ex", kNone),
@@ -382,6 +388,9 @@ int pname_count(GLenum pname) {
     case GL_TEXTURE_BORDER_COLOR:
     case GL_TEXTURE_ENV_COLOR:
     case GL_FOG_COLOR:
+    case GL_CONVOLUTION_BORDER_COLOR:
+    case GL_CONVOLUTION_FILTER_SCALE:
+    case GL_CONVOLUTION_FILTER_BIAS:
     case GL_OBJECT_PLANE:
     case GL_EYE_PLANE:
       return 4;
@@ -400,6 +409,7 @@ int pname_count(GLenum pname) {
     case GL_TEXTURE_ENV_MODE:
     case GL_TEXTURE_GEN_MODE:
     case GL_FOG_MODE:
+    case GL_CONVOLUTION_BORDER_MODE:
     case GL_FOG_DENSITY:
     case GL_FOG_START:
     case GL_FOG_END:

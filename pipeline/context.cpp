@@ -162,6 +162,9 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_COLOR_LOGIC_OP: fragment_.logic_op_enabled = v; return true;
     case GL_FOG: fog_.enabled = v; return true;
     case GL_COLOR_TABLE: transfer_.tables[kColorTable].enabled = v; return true;
+    case GL_CONVOLUTION_1D: transfer_.convolution_1d = v; return true;
+    case GL_CONVOLUTION_2D: transfer_.convolution_2d = v; return true;
+    case GL_SEPARABLE_2D: transfer_.separable_2d = v; return true;
     case GL_POST_CONVOLUTION_COLOR_TABLE: transfer_.tables[kPostConvolutionTable].enabled = v; return true;
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: transfer_.tables[kPostColorMatrixTable].enabled = v; return true;
     case GL_TEXTURE_1D: textures_.enabled_1d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
@@ -178,9 +181,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POLYGON_STIPPLE:
     case GL_TEXTURE_3D:
     case GL_AUTO_NORMAL:
-    case GL_CONVOLUTION_1D:
-    case GL_CONVOLUTION_2D:
-    case GL_SEPARABLE_2D:
     case GL_HISTOGRAM:
     case GL_MINMAX:
       unmodelled_caps_[cap] = v;
@@ -273,8 +273,10 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_COLOR_TABLE: return one(transfer_.tables[kColorTable].enabled);
     case GL_POST_CONVOLUTION_COLOR_TABLE: return one(transfer_.tables[kPostConvolutionTable].enabled);
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: return one(transfer_.tables[kPostColorMatrixTable].enabled);
-    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D:
-    case GL_SEPARABLE_2D: case GL_HISTOGRAM: case GL_MINMAX:
+    case GL_CONVOLUTION_1D: return one(transfer_.convolution_1d);
+    case GL_CONVOLUTION_2D: return one(transfer_.convolution_2d);
+    case GL_SEPARABLE_2D: return one(transfer_.separable_2d);
+    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_HISTOGRAM: case GL_MINMAX:
       return one(0.0);
     // transformation
     case GL_MATRIX_MODE: return one(transform_.matrix_mode);

@@ -252,6 +252,16 @@ class Context {
   void glCopyColorTable(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width);
   void glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params);
   void glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* params);
+  void glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
+                             const void* image);
+  void glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,
+                             GLenum type, const void* image);
+  void glSeparableFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,
+                           GLenum type, const void* row, const void* column);
+  void glCopyConvolutionFilter2D(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                                 GLsizei height);
+  void glConvolutionParameteri(GLenum target, GLenum pname, GLint param);
+  void glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params);
 
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();
@@ -348,8 +358,10 @@ class Context {
                     const std::vector<double>* depth);
   TextureLevel* sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
                                 GLsizei height);
-  void read_for_texture(bool depth, int x, int y, int width, int height, std::vector<Rgba>& rgba,
+  void read_for_texture(bool depth, int dims, int x, int y, int width, int height, std::vector<Rgba>& rgba,
                         std::vector<double>& values);
+  // The size an image has after a REDUCE convolution for `dims` (unchanged otherwise).
+  void reduced_size(int dims, int& width, int& height) const;
   void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
   void read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const;
   void set_tex_parameter(GLenum target, GLenum pname, const double* v);
@@ -362,6 +374,10 @@ class Context {
   void set_raster_position(const Vec4& object);
   void define_color_table(int index, GLenum internalformat, int width, int start, const std::vector<Rgba>& rgba);
   bool check_table_format(GLenum internalformat);
+  ConvolutionFilter* filter_for(GLenum target);
+  bool check_filter_format(GLenum internalformat, GLenum format, GLenum type);
+  void define_filter(ConvolutionFilter& f, GLenum internalformat, int width, int height, std::vector<Rgba>&& taps);
+  void set_convolution_parameter(GLenum target, GLenum pname, const double* v);
   // Rasterizes a pixel rectangle at the raster position with the zoom rule; colours from
   // `rgba` (after transfer) or, for depth rectangles, the raster colour with `depth` values.
   void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth);

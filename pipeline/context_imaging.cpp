@@ -133,3 +133,150 @@ void Context::glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* par
 }
 
 }  // namespace passim
+
+namespace passim {
+
+// ---------------------------------------------------------------- convolution filters
+
+ConvolutionFilter* Context::filter_for(GLenum target) {
+  switch (target) {
+    case GL_CONVOLUTION_1D: return &transfer_.filter_1d;
+    case GL_CONVOLUTION_2D: return &transfer_.filter_2d;
+    case GL_SEPARABLE_2D: return &transfer_.filter_separable;
+    default: return nullptr;
+  }
+}
+
+bool Context::check_filter_format(GLenum internalformat, GLenum format, GLenum type) {
+  const auto f = internal_format(static_cast<GLint>(internalformat));
+  if (!f || f->base == GL_DEPTH_COMPONENT || (internalformat >= 1 && internalformat <= 4) ||
+      format_components(format) == 0 || format == GL_DEPTH_COMPONENT || format == GL_STENCIL_INDEX ||
+      format == GL_COLOR_INDEX || !is_pixel_type(type)) {
+    set_error(GL_INVALID_ENUM);
+    return false;
+  }
+  return true;
+}
+
+void Context::define_filter(ConvolutionFilter& f, GLenum internalformat, int width, int height,
+                            std::vector<Rgba>&& taps) {
+  // §3.6.3: ×FILTER_SCALE + FILTER_BIAS, no clamp; the base format's components are used.
+  for (Rgba& t : taps)
+    for (int k = 0; k < 4; ++k) t[static_cast<std::size_t>(k)] = t[static_cast<std::size_t>(k)] * f.scale[k] + f.bias[k];
+  f.internal_format = internalformat;
+  f.base = internal_format(static_cast<GLint>(internalformat))->base;
+  f.width = width;
+  f.height = height;
+  f.separable = false;
+  f.taps = std::move(taps);
+}
+
+void Context::glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
+                                    const void* image) {
+  PASSIM_ENTRY(target, internalformat, width, format, type,
+               RawArrayArg{image, type, image && width > 0 && format_components(format) > 0 && type_size(type) > 0
+                                            ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
+                                                  static_cast<std::size_t>(type_size(type))
+                                            : 0u})
+  if (target != GL_CONVOLUTION_1D) return set_error(GL_INVALID_ENUM);
+  if (!check_filter_format(internalformat, format, type)) return;
+  if (width < 0 || width > profile_.limits.max_convolution_width) return set_error(GL_INVALID_VALUE);
+  std::vector<Rgba> taps(static_cast<std::size_t>(width), Rgba{0, 0, 0, 1});
+  if (image && width > 0) unpack_rgba(image, width, 1, format, type, pixel_store_.unpack, taps);
+  define_filter(transfer_.filter_1d, internalformat, width, 1, std::move(taps));
+}
+
+void Context::glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height,
+                                    GLenum format, GLenum type, const void* image) {
+  PASSIM_ENTRY(target, internalformat, width, height, format, type,
+               RawArrayArg{image, type,
+                           image && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
+                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
+                                     static_cast<std::size_t>(type_size(type))
+                               : 0u})
+  if (target != GL_CONVOLUTION_2D) return set_error(GL_INVALID_ENUM);
+  if (!check_filter_format(internalformat, format, type)) return;
+  if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
+      height > profile_.limits.max_convolution_height)
+    return set_error(GL_INVALID_VALUE);
+  std::vector<Rgba> taps(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), Rgba{0, 0, 0, 1});
+  if (image && width > 0 && height > 0) unpack_rgba(image, width, height, format, type, pixel_store_.unpack, taps);
+  define_filter(transfer_.filter_2d, internalformat, width, height, std::move(taps));
+}
+
+void Context::glSeparableFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,
+                                  GLenum type, const void* row, const void* column) {
+  auto count = [&](const void* p, int n) {
+    return p && n > 0 && format_components(format) > 0 && type_size(type) > 0
+               ? image_bytes(n, 1, format, type, pixel_store_.unpack) / static_cast<std::size_t>(type_size(type))
+               : 0u;
+  };
+  PASSIM_ENTRY(target, internalformat, width, height, format, type, RawArrayArg{row, type, count(row, width)},
+               RawArrayArg{column, type, count(column, height)})
+  if (target != GL_SEPARABLE_2D) return set_error(GL_INVALID_ENUM);
+  if (!check_filter_format(internalformat, format, type)) return;
+  if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
+      height > profile_.limits.max_convolution_height)
+    return set_error(GL_INVALID_VALUE);
+  ConvolutionFilter& f = transfer_.filter_separable;
+  std::vector<Rgba> r(static_cast<std::size_t>(width), Rgba{0, 0, 0, 1}), c(static_cast<std::size_t>(height), Rgba{0, 0, 0, 1});
+  if (row && width > 0) unpack_rgba(row, width, 1, format, type, pixel_store_.unpack, r);
+  if (column && height > 0) unpack_rgba(column, height, 1, format, type, pixel_store_.unpack, c);
+  for (auto* v : {&r, &c})
+    for (Rgba& t : *v)
+      for (int k = 0; k < 4; ++k) t[static_cast<std::size_t>(k)] = t[static_cast<std::size_t>(k)] * f.scale[k] + f.bias[k];
+  f.internal_format = internalformat;
+  f.base = internal_format(static_cast<GLint>(internalformat))->base;
+  f.width = width;
+  f.height = height;
+  f.separable = true;
+  f.row = std::move(r);
+  f.column = std::move(c);
+}
+
+void Context::glCopyConvolutionFilter2D(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width,
+                                        GLsizei height) {
+  PASSIM_ENTRY(target, internalformat, x, y, width, height)
+  if (target != GL_CONVOLUTION_2D) return set_error(GL_INVALID_ENUM);
+  if (!check_filter_format(internalformat, GL_RGBA, GL_FLOAT)) return;
+  if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
+      height > profile_.limits.max_convolution_height)
+    return set_error(GL_INVALID_VALUE);
+  std::vector<Rgba> taps;
+  read_framebuffer_rgba(x, y, width, height, taps);
+  define_filter(transfer_.filter_2d, internalformat, width, height, std::move(taps));
+}
+
+void Context::set_convolution_parameter(GLenum target, GLenum pname, const double* v) {
+  ConvolutionFilter* f = filter_for(target);
+  if (!f) return set_error(GL_INVALID_ENUM);
+  switch (pname) {
+    case GL_CONVOLUTION_BORDER_MODE: {
+      const GLenum m = static_cast<GLenum>(v[0]);
+      if (m != GL_REDUCE && m != GL_CONSTANT_BORDER && m != GL_REPLICATE_BORDER) return set_error(GL_INVALID_ENUM);
+      f->border_mode = m;
+      break;
+    }
+    case GL_CONVOLUTION_BORDER_COLOR: f->border_color = Vec4(v[0], v[1], v[2], v[3]); break;  // not clamped
+    case GL_CONVOLUTION_FILTER_SCALE: f->scale = Vec4(v[0], v[1], v[2], v[3]); break;
+    case GL_CONVOLUTION_FILTER_BIAS: f->bias = Vec4(v[0], v[1], v[2], v[3]); break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+}
+
+void Context::glConvolutionParameteri(GLenum target, GLenum pname, GLint param) {
+  PASSIM_ENTRY(target, pname, param)
+  if (pname != GL_CONVOLUTION_BORDER_MODE) return set_error(GL_INVALID_ENUM);
+  const double v[4] = {static_cast<double>(param), 0, 0, 0};
+  set_convolution_parameter(target, pname, v);
+}
+
+void Context::glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
+  const int n = pname == GL_CONVOLUTION_BORDER_MODE ? 1 : 4;
+  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  double v[4] = {0, 0, 0, 0};
+  for (int k = 0; k < n; ++k) v[k] = params[k];
+  set_convolution_parameter(target, pname, v);
+}
+
+}  // namespace passim

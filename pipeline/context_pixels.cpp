@@ -72,6 +72,14 @@ void Context::glPixelTransferf(GLenum pname, GLfloat param) {
     case GL_POST_COLOR_MATRIX_GREEN_BIAS: t.post_color_matrix_bias.g = v; break;
     case GL_POST_COLOR_MATRIX_BLUE_BIAS: t.post_color_matrix_bias.b = v; break;
     case GL_POST_COLOR_MATRIX_ALPHA_BIAS: t.post_color_matrix_bias.a = v; break;
+    case GL_POST_CONVOLUTION_RED_SCALE: t.post_convolution_scale.r = v; break;
+    case GL_POST_CONVOLUTION_GREEN_SCALE: t.post_convolution_scale.g = v; break;
+    case GL_POST_CONVOLUTION_BLUE_SCALE: t.post_convolution_scale.b = v; break;
+    case GL_POST_CONVOLUTION_ALPHA_SCALE: t.post_convolution_scale.a = v; break;
+    case GL_POST_CONVOLUTION_RED_BIAS: t.post_convolution_bias.r = v; break;
+    case GL_POST_CONVOLUTION_GREEN_BIAS: t.post_convolution_bias.g = v; break;
+    case GL_POST_CONVOLUTION_BLUE_BIAS: t.post_convolution_bias.b = v; break;
+    case GL_POST_CONVOLUTION_ALPHA_BIAS: t.post_convolution_bias.a = v; break;
     case GL_MAP_COLOR:
       t.map_color = v != 0.0;
       if (t.map_color) warn_once("GL_MAP_COLOR is on, but pixel maps are not modelled yet: it has no effect");
@@ -190,8 +198,9 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
   } else {
     std::vector<Rgba> rgba;
     unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
-    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
-    draw_pixel_rectangle(width, height, &rgba, nullptr);
+    int w = width, h = height;  // a REDUCE convolution shrinks the image
+    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), counters());
+    if (w > 0 && h > 0) draw_pixel_rectangle(w, h, &rgba, nullptr);
   }
 }
 
@@ -220,7 +229,8 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     for (std::size_t p = 0; p < depth.size(); ++p) out[p] = {depth[p], 0, 0, 1};
   } else {
     read_framebuffer_rgba(x, y, width, height, out);
-    transfer_rgba(out, transfer_, transform_.color.back(), c);
+    transfer_rgba(out, width, height, transfer_, transform_.color.back(), c);
+    if (width <= 0 || height <= 0) return;  // §4.3.2: REDUCE shrinks the image returned
     // §4.3.2: luminance is R + G + B (unweighted), clamped by the packing.
     if (format == GL_LUMINANCE || format == GL_LUMINANCE_ALPHA)
       for (Rgba& p : out) p[0] = p[0] + p[1] + p[2];
@@ -253,8 +263,9 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     read_framebuffer_rgba(x, y, width, height, rgba);
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += rgba.size() * static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
-    transfer_rgba(rgba, transfer_, transform_.color.back(), c);
-    draw_pixel_rectangle(width, height, &rgba, nullptr);
+    int w = width, h = height;
+    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c);
+    if (w > 0 && h > 0) draw_pixel_rectangle(w, h, &rgba, nullptr);
   }
 }
 

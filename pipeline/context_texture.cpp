@@ -180,6 +180,9 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   const auto fmt_info = internal_format(internalformat);
   if (!fmt_info) return set_error(GL_INVALID_VALUE);
   if (border != 0 && border != 1) return set_error(GL_INVALID_VALUE);
+  // The size checks use the size after a REDUCE convolution (§3.8.1), even without data.
+  const int source_width = width, source_height = dims == 2 ? height : 1;
+  if (format != GL_DEPTH_COMPONENT) reduced_size(dims, width, height);
   const int w = width - 2 * border, h = dims == 2 ? height - 2 * border : 1;
   if (width < 0 || height < 0 || !is_power_of_two(w) || !is_power_of_two(h) || w > max || h > max)
     return set_error(GL_INVALID_VALUE);
@@ -204,8 +207,9 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
     unpack_depth(pixels, l.width, l.height, type, pixel_store_.unpack, depth);
     transfer_depth(depth, transfer_);
   } else {
-    unpack_rgba(pixels, l.width, l.height, format, type, pixel_store_.unpack, rgba);
-    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
+    unpack_rgba(pixels, source_width, source_height, format, type, pixel_store_.unpack, rgba);
+    int tw = source_width, th = source_height;
+    transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims);
   }
   store_texels(l, 0, 0, l.width, l.height, rgba, format == GL_DEPTH_COMPONENT ? &depth : nullptr);
 }
@@ -231,6 +235,13 @@ void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLs
   tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
 }
 
+void Context::reduced_size(int dims, int& width, int& height) const {
+  const ConvolutionFilter* f = active_convolution(transfer_, dims);
+  if (!f || f->border_mode != GL_REDUCE) return;
+  width = width - f->width + 1;
+  if (dims == 2) height = height - f->height + 1;
+}
+
 TextureLevel* Context::sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset,
                                        GLsizei width, GLsizei height) {
   // §3.8.2: the level must exist and the rectangle lie inside it (borders included).
@@ -253,7 +264,7 @@ TextureLevel* Context::sub_image_level(GLenum target, int dims, GLint level, GLi
   return &l;
 }
 
-void Context::read_for_texture(bool depth, int x, int y, int width, int height, std::vector<Rgba>& rgba,
+void Context::read_for_texture(bool depth, int dims, int x, int y, int width, int height, std::vector<Rgba>& rgba,
                                std::vector<double>& values) {
   Counters& c = counters();
   const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
@@ -268,7 +279,8 @@ void Context::read_for_texture(bool depth, int x, int y, int width, int height, 
     read_framebuffer_rgba(x, y, width, height, rgba);
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
-    transfer_rgba(rgba, transfer_, transform_.color.back(), c);
+    int w = width, h = height;
+    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims);
   }
 }
 
@@ -276,6 +288,8 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
                             GLsizei height, GLenum format, GLenum type, const void* pixels) {
   if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
   if (!is_texture_format(format) || !is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  const int source_width = width, source_height = height;
+  if (format != GL_DEPTH_COMPONENT) reduced_size(dims, width, height);
   TextureLevel* level_ptr = sub_image_level(target, dims, level, xoffset, yoffset, width, height);
   if (!level_ptr) return;
   TextureLevel& l = *level_ptr;
@@ -288,8 +302,9 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
     unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
     transfer_depth(depth, transfer_);
   } else {
-    unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
-    transfer_rgba(rgba, transfer_, transform_.color.back(), counters());
+    unpack_rgba(pixels, source_width, source_height, format, type, pixel_store_.unpack, rgba);
+    int tw = source_width, th = source_height;
+    transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims);
   }
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba,
                format == GL_DEPTH_COMPONENT ? &depth : nullptr);
@@ -357,7 +372,8 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   std::vector<Rgba> rgba;
   std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
-  read_for_texture(is_depth, x, y, l.width, l.height, rgba, depth);
+  // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
+  read_for_texture(is_depth, dims, x, y, width, dims == 2 ? height : 1, rgba, depth);
   store_texels(l, 0, 0, l.width, l.height, rgba, is_depth ? &depth : nullptr);
 }
 
@@ -375,15 +391,21 @@ void Context::glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat
 
 void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                                  GLsizei width, GLsizei height) {
+  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return set_error(GL_INVALID_ENUM);
+  const TextureObject& tex_probe = *texture_for(target);
+  const bool probe_depth = level >= 0 && static_cast<std::size_t>(level) < tex_probe.levels.size() &&
+                           tex_probe.levels[static_cast<std::size_t>(level)].format.base == GL_DEPTH_COMPONENT;
+  const int source_width = width, source_height = height;
+  if (!probe_depth) reduced_size(dims, width, height);
   TextureLevel* level_ptr = sub_image_level(target, dims, level, xoffset, yoffset, width, height);
   if (!level_ptr) return;
   TextureLevel& l = *level_ptr;
   const int b = l.border;
-  if (width == 0 || height == 0) return;
+  if (width <= 0 || height <= 0) return;
   std::vector<Rgba> rgba;
   std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
-  read_for_texture(is_depth, x, y, width, height, rgba, depth);
+  read_for_texture(is_depth, dims, x, y, source_width, source_height, rgba, depth);
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba, is_depth ? &depth : nullptr);
 }
 

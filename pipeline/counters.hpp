@@ -48,6 +48,8 @@ struct Counters {
   std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
   std::uint64_t pixels_scale_bias = 0;
   std::uint64_t pixels_color_matrix = 0;
+  std::uint64_t pixels_convolved = 0;
+  std::uint64_t convolution_taps = 0;               // multiply-adds (per pixel and tap)
   std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE
   std::uint64_t post_convolution_table_lookups = 0;
   std::uint64_t post_color_matrix_table_lookups = 0;
@@ -98,6 +100,8 @@ struct Counters {
     PASSIM_COUNTER(pixels_transferred)
     PASSIM_COUNTER(pixels_scale_bias)
     PASSIM_COUNTER(pixels_color_matrix)
+    PASSIM_COUNTER(pixels_convolved)
+    PASSIM_COUNTER(convolution_taps)
     PASSIM_COUNTER(color_table_lookups)
     PASSIM_COUNTER(post_convolution_table_lookups)
     PASSIM_COUNTER(post_color_matrix_table_lookups)

@@ -737,6 +737,20 @@ class Replayer {
     else if (fn == "glTexSubImage2D") { w = static_cast<int>(v[4].i); h = static_cast<int>(v[5].i); format = 6; type = 7; data = 8; }
     else if (fn == "glColorTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
     else if (fn == "glColorSubTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
+    else if (fn == "glConvolutionFilter1D") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
+    else if (fn == "glConvolutionFilter2D") { w = static_cast<int>(v[2].i); h = static_cast<int>(v[3].i); format = 4; type = 5; data = 6; }
+    else if (fn == "glSeparableFilter2D") {
+      const GLenum f = static_cast<GLenum>(v[4].i), t = static_cast<GLenum>(v[5].i);
+      if (format_components(f) == 0 || !is_pixel_type(t)) return;
+      for (const auto& [arg, n] : {std::pair{6, v[2].i}, std::pair{7, v[3].i}}) {
+        if (!v[static_cast<std::size_t>(arg)].bytes || n <= 0) continue;
+        const std::size_t need = image_bytes(static_cast<int>(n), 1, f, t, ctx.unpack_store());
+        if (v[static_cast<std::size_t>(arg)].bytes->size() < need)
+          fail(fmt::format("glSeparableFilter2D: argument {} needs {} bytes, the trace gives {}", arg + 1, need,
+                           v[static_cast<std::size_t>(arg)].bytes->size()));
+      }
+      return;
+    }
     else if (fn == "glDrawPixels") { w = static_cast<int>(v[0].i); h = static_cast<int>(v[1].i); format = 2; type = 3; data = 4; }
     else return;
     const GLenum f = static_cast<GLenum>(v[format].i), t = static_cast<GLenum>(v[type].i);

@@ -28,7 +28,15 @@ void color_table_lookup(const ColorTable& t, Rgba& c) {
   }
 }
 
-void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& s, const Mat4& m, Counters& counters) {
+const ConvolutionFilter* active_convolution(const PixelTransferState& s, int dims) {
+  if (dims == 1) return s.convolution_1d ? &s.filter_1d : nullptr;
+  if (s.convolution_2d) return &s.filter_2d;
+  if (s.separable_2d) return &s.filter_separable;
+  return nullptr;
+}
+
+void transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, const PixelTransferState& s, const Mat4& m,
+                   Counters& counters, int dims) {
   const bool scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
   const bool matrix = m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
   const ColorTable& t0 = s.tables[kColorTable];
@@ -36,17 +44,27 @@ void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& s, const
   const ColorTable& t2 = s.tables[kPostColorMatrixTable];
   const bool use0 = t0.enabled && !t0.entries.empty(), use1 = t1.enabled && !t1.entries.empty();
   const bool use2 = t2.enabled && !t2.entries.empty();
+  const std::uint64_t n_in = pixels.size();
+  // Step 2: c = c·scale + bias, no clamp. Step 4: COLOR_TABLE.
   for (Rgba& p : pixels) {
-    // §3.6.5 step 2: c = c·scale + bias, no clamp.
     if (scale_bias)
       for (int k = 0; k < 4; ++k) p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.scale[k] + s.bias[k];
-    // Step 4: COLOR_TABLE. (Step 5, convolution, is not modelled yet.) Step 6: POST_CONVOLUTION_COLOR_TABLE.
     if (use0) color_table_lookup(t0, p);
+  }
+  // Step 5: convolution, then the post-convolution scale and bias (only when a convolution
+  // ran, A14). No clamp between convolution and the colour matrix.
+  const ConvolutionFilter* filter = active_convolution(s, dims);
+  if (filter) {
+    convolve(pixels, width, height, *filter, counters);
+    for (Rgba& p : pixels)
+      for (int k = 0; k < 4; ++k)
+        p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.post_convolution_scale[k] + s.post_convolution_bias[k];
+  }
+  for (Rgba& p : pixels) {
+    // Step 6: POST_CONVOLUTION_COLOR_TABLE. Step 7: colour matrix with its post scale and bias.
     if (use1) color_table_lookup(t1, p);
-    // Steps 7: colour matrix, then its post scale and bias (ARB_imaging).
     if (matrix) {
-      const Vec4 c(p[0], p[1], p[2], p[3]);
-      const Vec4 r = m * c;
+      const Vec4 r = m * Vec4(p[0], p[1], p[2], p[3]);
       for (int k = 0; k < 4; ++k)
         p[static_cast<std::size_t>(k)] = r[k] * s.post_color_matrix_scale[k] + s.post_color_matrix_bias[k];
     }
@@ -54,12 +72,12 @@ void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& s, const
     if (use2) color_table_lookup(t2, p);
   }
   const std::uint64_t n = pixels.size();
-  if (scale_bias) counters.pixels_scale_bias += n;
+  if (scale_bias) counters.pixels_scale_bias += n_in;
+  if (use0) counters.color_table_lookups += n_in;
   if (matrix) counters.pixels_color_matrix += n;
-  if (use0) counters.color_table_lookups += n;
   if (use1) counters.post_convolution_table_lookups += n;
   if (use2) counters.post_color_matrix_table_lookups += n;
-  counters.pixels_transferred += n;
+  counters.pixels_transferred += n_in;
 }
 
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& s) {

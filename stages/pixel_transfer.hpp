@@ -7,6 +7,7 @@
 
 #include "pipeline/counters.hpp"
 #include "pipeline/state.hpp"
+#include "stages/convolution.hpp"
 #include "stages/pixel_unpack.hpp"
 
 namespace passim {
@@ -31,15 +32,24 @@ struct PixelTransferState {
   int index_shift = 0, index_offset = 0;
   Vec4 post_color_matrix_scale{1.0, 1.0, 1.0, 1.0}, post_color_matrix_bias{0.0, 0.0, 0.0, 0.0};
   std::array<ColorTable, 3> tables{};  // COLOR_TABLE, POST_CONVOLUTION_, POST_COLOR_MATRIX_
+  // Convolution: the filters and their enables; post-convolution scale and bias.
+  ConvolutionFilter filter_1d, filter_2d, filter_separable;
+  bool convolution_1d = false, convolution_2d = false, separable_2d = false;
+  Vec4 post_convolution_scale{1.0, 1.0, 1.0, 1.0}, post_convolution_bias{0.0, 0.0, 0.0, 0.0};
 };
+
+// Which convolution an operation uses (§3.6.5): CONVOLUTION_1D for 1D textures; for 2D images
+// CONVOLUTION_2D, else SEPARABLE_2D. nullptr when none is enabled.
+const ConvolutionFilter* active_convolution(const PixelTransferState& state, int dims);
 
 // §3.6.5 step 4/6/8: the components the table's base format replaces are looked up at
 // round(clamp(c, 0, 1)·(W − 1)) (Table 3.13); the others pass unchanged and unclamped.
 void color_table_lookup(const ColorTable& table, Rgba& c);
 
-// Applies the RGBA transfer operations to every group, in place.
-void transfer_rgba(std::vector<Rgba>& pixels, const PixelTransferState& state, const Mat4& color_matrix,
-                   Counters& counters);
+// Applies the RGBA transfer operations to a width x height image in place, in the spec's
+// order; a REDUCE convolution changes width and height. `dims` is 1 for 1D textures.
+void transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, const PixelTransferState& state,
+                   const Mat4& color_matrix, Counters& counters, int dims = 2);
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& state);
 
 }  // namespace passim

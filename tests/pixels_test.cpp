@@ -174,3 +174,95 @@ TEST(Imaging, ColorTableErrorsAndLimits) {
   ctx.glGetColorTableParameteriv(GL_COLOR_TABLE, GL_COLOR_TABLE_WIDTH, &w);
   EXPECT_EQ(w, 2);
 }
+
+namespace {
+// A 3x3 RGBA float image whose components identify their source: R = 10x + y + 1,
+// G = 100 + ..., scaled by 1/1000 so that they stay below 1.
+std::vector<GLfloat> numbered_image(int w, int h) {
+  std::vector<GLfloat> img(static_cast<std::size_t>(4 * w * h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < 4; ++k)
+        img[static_cast<std::size_t>(4 * (y * w + x) + k)] = static_cast<float>((100 * k + 10 * x + y + 1) / 1000.0);
+  return img;
+}
+double numbered(int x, int y, int k) { return (100 * k + 10 * x + y + 1) / 1000.0; }
+}  // namespace
+
+TEST(Imaging, PaperSection4PackingKernel) {
+  // §4's 3x3 RGBA filter, printed top row first in the paper; GL images (and filters) are
+  // given bottom row first, so the filter data's row 0 is the printed bottom row
+  // ([1,0,0,0] [0,1,0,0] [0,0,0,0]) and row 1 the printed middle row ([0,0,1,0] [0,0,0,1] 0).
+  // Output texel (i, j) then holds R from (i−1, j−1) (lower left), G from (i, j−1) (lower),
+  // B from (i−1, j) (left), A from (i, j) (centre). Drawn with DrawPixels at 16 bits so the
+  // values survive the framebuffer exactly enough to compare codes.
+  const GLfloat filter[3 * 3 * 4] = {1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 0, 0,    // row 0 (bottom)
+                                     0, 0, 1, 0,  0, 0, 0, 1,  0, 0, 0, 0,    // row 1
+                                     0, 0, 0, 0,  0, 0, 0, 0,  0, 0, 0, 0};   // row 2 (top)
+  Context ctx(test::small_config(3, 3, 16));
+  test::window_projection(ctx);
+  ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, filter);
+  ctx.glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
+  ctx.glEnable(GL_CONVOLUTION_2D);
+  const std::vector<GLfloat> img = numbered_image(3, 3);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(3, 3, GL_RGBA, GL_FLOAT, img.data());
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  auto code = [](double v) { return static_cast<std::uint32_t>(std::floor(v * 65535.0 + 0.5)); };
+  const auto p = pixel(ctx, 1, 1);
+  EXPECT_EQ(p[0], code(numbered(0, 0, 0)));  // R from the lower left
+  EXPECT_EQ(p[1], code(numbered(1, 0, 1)));  // G from below
+  EXPECT_EQ(p[2], code(numbered(0, 1, 2)));  // B from the left
+  EXPECT_EQ(p[3], code(numbered(1, 1, 3)));  // A from the centre
+  EXPECT_EQ(ctx.total_counters().convolution_taps, 81u);  // 9 pixels x 9 taps
+}
+
+TEST(Imaging, ConvolutionBorderModesAndReduceSizes) {
+  // A 1x3 box filter (weights 1/3) on a 3x1 image (0.3, 0.6, 0.9):
+  //  REPLICATE: x=0: (0.3 + 0.3 + 0.6)/3 = 0.4; x=2: (0.6 + 0.9 + 0.9)/3 = 0.8.
+  //  CONSTANT (border 0): x=0: (0 + 0.3 + 0.6)/3 = 0.3; x=2: (0.6 + 0.9 + 0)/3 = 0.5.
+  //  REDUCE: one output pixel (0.3 + 0.6 + 0.9)/3 = 0.6, anchored at the raster position.
+  const GLfloat box[3 * 4] = {1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3,
+                              1.f / 3, 1.f / 3, 1.f / 3, 1.f / 3};
+  const GLfloat img[3] = {0.3f, 0.6f, 0.9f};
+  struct Case { GLenum mode; double first, last; int drawn; };
+  const Case cases[] = {{GL_REPLICATE_BORDER, 0.4, 0.8, 3}, {GL_CONSTANT_BORDER, 0.3, 0.5, 3}, {GL_REDUCE, 0.6, -1, 1}};
+  for (const Case& c : cases) {
+    Context ctx(test::small_config(3, 1, 12));
+    test::window_projection(ctx);
+    ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_LUMINANCE, 3, 1, GL_RGBA, GL_FLOAT, box);
+    ctx.glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, static_cast<GLint>(c.mode));
+    ctx.glEnable(GL_CONVOLUTION_2D);
+    ctx.glRasterPos2i(0, 0);
+    ctx.glDrawPixels(3, 1, GL_LUMINANCE, GL_FLOAT, img);
+    // Luminance filter: R, G, B convolved with the filter's L; alpha (1) passes unchanged.
+    // The inputs are floats (0.3f ...), so the sums are taken as the spec's Σ over the taps in
+    // double: ((s0·t + s1·t) + s2·t) with t = float(1/3); none lies near a rounding tie.
+    const double t = 1.0f / 3.0f, a = 0.3f, b = 0.6f, d = 0.9f;
+    const double sums[3][2] = {{(a * t + a * t) + b * t, (b * t + d * t) + d * t},
+                               {(0.0 * t + a * t) + b * t, (b * t + d * t) + 0.0 * t},
+                               {(a * t + b * t) + d * t, 0.0}};
+    const int row = c.mode == GL_REPLICATE_BORDER ? 0 : c.mode == GL_CONSTANT_BORDER ? 1 : 2;
+    EXPECT_NEAR(sums[row][0], c.first, 1e-6);  // the hand values above
+    EXPECT_EQ(pixel(ctx, 0, 0)[0], static_cast<std::uint32_t>(std::floor(sums[row][0] * 4095.0 + 0.5))) << enum_name(c.mode);
+    if (c.last >= 0) {
+      EXPECT_NEAR(sums[row][1], c.last, 1e-6);
+      EXPECT_EQ(pixel(ctx, 2, 0)[0], static_cast<std::uint32_t>(std::floor(sums[row][1] * 4095.0 + 0.5))) << enum_name(c.mode);
+    }
+    EXPECT_EQ(pixel(ctx, 0, 0)[3], 4095u);
+    EXPECT_EQ(ctx.total_counters().pixels_drawn, static_cast<std::uint64_t>(c.drawn));
+  }
+  // REDUCE to nothing: a 3x3 filter on a 2x2 image draws nothing, without an error.
+  Context ctx(test::small_config(3, 3, 8));
+  const GLfloat f9[9] = {0};
+  ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_LUMINANCE, 3, 3, GL_LUMINANCE, GL_FLOAT, f9);
+  ctx.glEnable(GL_CONVOLUTION_2D);
+  const GLfloat four[4] = {1, 1, 1, 1};
+  ctx.glDrawPixels(2, 2, GL_LUMINANCE, GL_FLOAT, four);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 0u);
+  // Over the profile's limit (ideal: 11).
+  std::vector<GLfloat> big(13 * 13, 0.0f);
+  ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_LUMINANCE, 13, 13, GL_LUMINANCE, GL_FLOAT, big.data());
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+}

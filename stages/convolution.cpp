@@ -1,0 +1,74 @@
+#include "stages/convolution.hpp"
+
+#include <algorithm>
+
+namespace passim {
+
+Rgba ConvolutionFilter::tap(int n, int m) const {
+  if (separable) {
+    // Cf[n, m] = Crow[n]·Ccol[m].
+    const Rgba& r = row[static_cast<std::size_t>(n)];
+    const Rgba& c = column[static_cast<std::size_t>(m)];
+    return {r[0] * c[0], r[1] * c[1], r[2] * c[2], r[3] * c[3]};
+  }
+  return taps[static_cast<std::size_t>(n + m * width)];
+}
+
+void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& f, Counters& counters) {
+  const int ws = width, hs = height, wf = f.width, hf = f.height;
+  const bool reduce = f.border_mode == GL_REDUCE;
+  const int wo = reduce ? ws - wf + 1 : ws, ho = reduce ? hs - hf + 1 : hs;
+  if (wo <= 0 || ho <= 0 || wf == 0 || hf == 0) {
+    // A REDUCE to nothing gives a null image (no error); a zero-size filter gives C = 0.
+    if (wo <= 0 || ho <= 0) {
+      image.clear();
+      width = std::max(0, wo);
+      height = std::max(0, ho);
+    } else {
+      for (Rgba& p : image) p = {0, 0, 0, 0};
+    }
+    return;
+  }
+  // Table 3.14: which components the filter convolves.
+  bool conv[4];
+  switch (f.base) {
+    case GL_ALPHA: conv[0] = conv[1] = conv[2] = false; conv[3] = true; break;
+    case GL_LUMINANCE: case GL_RGB: conv[0] = conv[1] = conv[2] = true; conv[3] = false; break;
+    default: conv[0] = conv[1] = conv[2] = conv[3] = true; break;  // LA, INTENSITY, RGBA
+  }
+  // The filter component used for each image component (L/I filters keep their value in [0]).
+  int source[4] = {0, 1, 2, 3};
+  if (f.base == GL_LUMINANCE || f.base == GL_LUMINANCE_ALPHA || f.base == GL_INTENSITY) source[0] = source[1] = source[2] = 0;
+  if (f.base == GL_INTENSITY) source[3] = 0;
+  const int cw = reduce ? 0 : wf / 2, ch = reduce ? 0 : hf / 2;
+  auto at = [&](int x, int y) -> Rgba {
+    if (x >= 0 && x < ws && y >= 0 && y < hs) return image[static_cast<std::size_t>(y * ws + x)];
+    if (f.border_mode == GL_CONSTANT_BORDER)
+      return {f.border_color.r, f.border_color.g, f.border_color.b, f.border_color.a};
+    return image[static_cast<std::size_t>(std::clamp(y, 0, hs - 1) * ws + std::clamp(x, 0, ws - 1))];  // REPLICATE
+  };
+  std::vector<Rgba> out(static_cast<std::size_t>(wo) * static_cast<std::size_t>(ho));
+  for (int j = 0; j < ho; ++j)
+    for (int i = 0; i < wo; ++i) {
+      double sum[4] = {0, 0, 0, 0};
+      for (int m = 0; m < hf; ++m)
+        for (int n = 0; n < wf; ++n) {
+          const Rgba s = at(i - cw + n, j - ch + m);
+          const Rgba t = f.tap(n, m);
+          for (int k = 0; k < 4; ++k)
+            if (conv[k]) sum[k] += s[static_cast<std::size_t>(k)] * t[static_cast<std::size_t>(source[k])];
+        }
+      // Components the filter does not list pass unchanged (from the output's anchor pixel).
+      const Rgba anchor = at(i, j);
+      Rgba& o = out[static_cast<std::size_t>(j * wo + i)];
+      for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = conv[k] ? sum[k] : anchor[static_cast<std::size_t>(k)];
+    }
+  counters.convolution_taps += static_cast<std::uint64_t>(wo) * static_cast<std::uint64_t>(ho) *
+                               static_cast<std::uint64_t>(wf) * static_cast<std::uint64_t>(hf);
+  counters.pixels_convolved += static_cast<std::uint64_t>(wo) * static_cast<std::uint64_t>(ho);
+  image.swap(out);
+  width = wo;
+  height = ho;
+}
+
+}  // namespace passim

@@ -1,0 +1,32 @@
+// Convolution (ARB_imaging; OpenGL 1.2.1 §3.6.3, §3.6.5 step 5): 1D, 2D and separable
+// filters, border modes REDUCE (smaller output, anchored at the source's lower left),
+// CONSTANT_BORDER and REPLICATE_BORDER (same size, centred on ⌊Wf/2⌋, ⌊Hf/2⌋); the filter's
+// base format chooses the convolved components (Table 3.14). No clamping.
+#pragma once
+#include <vector>
+
+#include "pipeline/counters.hpp"
+#include "pipeline/state.hpp"
+#include "stages/pixel_unpack.hpp"
+
+namespace passim {
+
+struct ConvolutionFilter {
+  GLenum internal_format = GL_RGBA;
+  GLenum base = GL_RGBA;
+  int width = 0, height = 0;   // height 1 for 1D
+  std::vector<Rgba> taps;      // width x height, rows bottom first; separable: row x column product
+  std::vector<Rgba> row, column;  // separable filters only
+  bool separable = false;
+  Vec4 scale{1.0, 1.0, 1.0, 1.0}, bias{0.0, 0.0, 0.0, 0.0};  // FILTER_SCALE, FILTER_BIAS
+  GLenum border_mode = GL_REDUCE;
+  Vec4 border_color{0.0, 0.0, 0.0, 0.0};
+  // The tap (n, m), n left to right, m bottom to top.
+  Rgba tap(int n, int m) const;
+};
+
+// Convolves a width x height image in place; width and height become the output size
+// (smaller under REDUCE, possibly 0).
+void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters);
+
+}  // namespace passim
