@@ -282,6 +282,12 @@ const std::vector<CallInfo>& table() {
       ROW(glCopyConvolutionFilter2D, "eeiiii", kNone),
       ROW(glConvolutionParameteri, "eex", kNone),
       ROW(glConvolutionParameterfv, "eeFp", kNone),
+      ROW(glHistogram, "eiez", kNone),
+      ROW(glResetHistogram, "e", kNone),
+      ROW(glGetHistogram, "ezeeO", kQuery),
+      ROW(glMinmax, "eez", kNone),
+      ROW(glResetMinmax, "e", kNone),
+      ROW(glGetMinmax, "ezeeO", kQuery),
       // fog
       ROW(glFogf, "ey", kNone),
       ROW(glFogi, "ex", kNone),

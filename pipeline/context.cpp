@@ -30,6 +30,7 @@ Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
   lighting_.lights[0].specular = Vec4(1.0);
   textures_.gen[0].object_plane = textures_.gen[0].eye_plane = Vec4(1.0, 0.0, 0.0, 0.0);  // §2.10.4 defaults
   textures_.gen[1].object_plane = textures_.gen[1].eye_plane = Vec4(0.0, 1.0, 0.0, 0.0);
+  transfer_.minmax.reset();
   update_fragment_bits();
   scratch_->fragment_ops.configure(FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_});
 }
@@ -165,6 +166,8 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_CONVOLUTION_1D: transfer_.convolution_1d = v; return true;
     case GL_CONVOLUTION_2D: transfer_.convolution_2d = v; return true;
     case GL_SEPARABLE_2D: transfer_.separable_2d = v; return true;
+    case GL_HISTOGRAM: transfer_.histogram.enabled = v; return true;
+    case GL_MINMAX: transfer_.minmax.enabled = v; return true;
     case GL_POST_CONVOLUTION_COLOR_TABLE: transfer_.tables[kPostConvolutionTable].enabled = v; return true;
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: transfer_.tables[kPostColorMatrixTable].enabled = v; return true;
     case GL_TEXTURE_1D: textures_.enabled_1d = v; texturing_enabled_ = textures_.enabled_1d || textures_.enabled_2d; return true;
@@ -181,8 +184,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POLYGON_STIPPLE:
     case GL_TEXTURE_3D:
     case GL_AUTO_NORMAL:
-    case GL_HISTOGRAM:
-    case GL_MINMAX:
       unmodelled_caps_[cap] = v;
       if (v) warn_once(fmt::format("{} is enabled, but that stage is not modelled yet: it has no effect", enum_name(cap)));
       return true;
@@ -276,7 +277,9 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_CONVOLUTION_1D: return one(transfer_.convolution_1d);
     case GL_CONVOLUTION_2D: return one(transfer_.convolution_2d);
     case GL_SEPARABLE_2D: return one(transfer_.separable_2d);
-    case GL_TEXTURE_3D: case GL_AUTO_NORMAL: case GL_HISTOGRAM: case GL_MINMAX:
+    case GL_HISTOGRAM: return one(transfer_.histogram.enabled);
+    case GL_MINMAX: return one(transfer_.minmax.enabled);
+    case GL_TEXTURE_3D: case GL_AUTO_NORMAL:
       return one(0.0);
     // transformation
     case GL_MATRIX_MODE: return one(transform_.matrix_mode);

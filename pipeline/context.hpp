@@ -262,6 +262,12 @@ class Context {
                                  GLsizei height);
   void glConvolutionParameteri(GLenum target, GLenum pname, GLint param);
   void glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params);
+  void glHistogram(GLenum target, GLsizei width, GLenum internalformat, GLboolean sink);
+  void glResetHistogram(GLenum target);
+  void glGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values);
+  void glMinmax(GLenum target, GLenum internalformat, GLboolean sink);
+  void glResetMinmax(GLenum target);
+  void glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values);
 
   // ---- window system (what glXSwapBuffers does) ----
   void swap_buffers();

@@ -1,9 +1,13 @@
 // Context: the imaging subset's colour tables (ARB_imaging, §3.6.3 of GL 1.2.1).
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstring>
+
 #include "pipeline/context.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "pipeline/texture.hpp"
+#include "stages/pixel_pack.hpp"
 
 namespace passim {
 
@@ -277,6 +281,122 @@ void Context::glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloa
   double v[4] = {0, 0, 0, 0};
   for (int k = 0; k < n; ++k) v[k] = params[k];
   set_convolution_parameter(target, pname, v);
+}
+
+}  // namespace passim
+
+namespace passim {
+
+// ---------------------------------------------------------------- histogram and minmax
+
+namespace {
+bool is_statistics_format(GLenum f) {
+  const auto info = internal_format(static_cast<GLint>(f));
+  // Histogram and minmax formats: no 1-4, no INTENSITY, no depth.
+  return info && !(f >= 1 && f <= 4) && info->base != GL_INTENSITY && info->base != GL_DEPTH_COMPONENT;
+}
+}  // namespace
+
+void Context::glHistogram(GLenum target, GLsizei width, GLenum internalformat, GLboolean sink) {
+  PASSIM_ENTRY(target, width, internalformat, sink)
+  if (target != GL_HISTOGRAM) return set_error(GL_INVALID_ENUM);
+  if (width < 0 || (width & (width - 1)) != 0) return set_error(GL_INVALID_VALUE);
+  if (!is_statistics_format(internalformat)) return set_error(GL_INVALID_ENUM);
+  if (width > profile_.limits.max_histogram_width) return set_error(GL_TABLE_TOO_LARGE);
+  Histogram& h = transfer_.histogram;
+  h.internal_format = internalformat;
+  h.base = internal_format(static_cast<GLint>(internalformat))->base;
+  h.sink = sink != GL_FALSE;
+  h.counts.assign(static_cast<std::size_t>(width), {0, 0, 0, 0});
+}
+
+void Context::glResetHistogram(GLenum target) {
+  PASSIM_ENTRY(target)
+  if (target != GL_HISTOGRAM) return set_error(GL_INVALID_ENUM);
+  for (auto& c : transfer_.histogram.counts) c = {0, 0, 0, 0};
+}
+
+void Context::glGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
+  PASSIM_ENTRY()
+  if (target != GL_HISTOGRAM) return set_error(GL_INVALID_ENUM);
+  if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
+    return set_error(GL_INVALID_ENUM);
+  // Counts are returned as they are (no normalisation), converted to the type, in the
+  // format's components (L from the red count).
+  const int n = format_components(format), size = type_size(type);
+  std::byte* out = static_cast<std::byte*>(values);
+  for (std::size_t i = 0; i < transfer_.histogram.counts.size(); ++i) {
+    const auto& c = transfer_.histogram.counts[i];
+    std::uint32_t v[4] = {0, 0, 0, 0};
+    switch (format) {
+      case GL_RED: case GL_LUMINANCE: v[0] = c[0]; break;
+      case GL_GREEN: v[0] = c[1]; break;
+      case GL_BLUE: v[0] = c[2]; break;
+      case GL_ALPHA: v[0] = c[3]; break;
+      case GL_LUMINANCE_ALPHA: v[0] = c[0]; v[1] = c[3]; break;
+      default: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; v[3] = c[3]; break;
+    }
+    for (int k = 0; k < n; ++k) {
+      std::byte* p = out + (i * static_cast<std::size_t>(n) + static_cast<std::size_t>(k)) * static_cast<std::size_t>(size);
+      auto put = [&](auto x) { std::memcpy(p, &x, sizeof(x)); };
+      switch (type) {
+        case GL_FLOAT: put(static_cast<float>(v[k])); break;
+        case GL_UNSIGNED_BYTE: put(static_cast<std::uint8_t>(std::min<std::uint32_t>(v[k], 255))); break;
+        case GL_BYTE: put(static_cast<std::int8_t>(std::min<std::uint32_t>(v[k], 127))); break;
+        case GL_UNSIGNED_SHORT: put(static_cast<std::uint16_t>(std::min<std::uint32_t>(v[k], 65535))); break;
+        case GL_SHORT: put(static_cast<std::int16_t>(std::min<std::uint32_t>(v[k], 32767))); break;
+        case GL_INT: put(static_cast<std::int32_t>(std::min<std::uint32_t>(v[k], 2147483647u))); break;
+        default: put(v[k]); break;
+      }
+    }
+  }
+  if (reset) glResetHistogram(GL_HISTOGRAM);
+}
+
+void Context::glMinmax(GLenum target, GLenum internalformat, GLboolean sink) {
+  PASSIM_ENTRY(target, internalformat, sink)
+  if (target != GL_MINMAX) return set_error(GL_INVALID_ENUM);
+  if (!is_statistics_format(internalformat)) return set_error(GL_INVALID_ENUM);
+  Minmax& m = transfer_.minmax;
+  m.internal_format = internalformat;
+  m.base = internal_format(static_cast<GLint>(internalformat))->base;
+  m.sink = sink != GL_FALSE;
+  m.reset();
+}
+
+void Context::glResetMinmax(GLenum target) {
+  PASSIM_ENTRY(target)
+  if (target != GL_MINMAX) return set_error(GL_INVALID_ENUM);
+  transfer_.minmax.reset();
+}
+
+void Context::glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
+  PASSIM_ENTRY()
+  if (target != GL_MINMAX) return set_error(GL_INVALID_ENUM);
+  if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
+    return set_error(GL_INVALID_ENUM);
+  // Two groups, minimum then maximum, packed like pixels (Table 4.7; FLOAT is not clamped
+  // here so that the unclamped extremes can be read).
+  const Minmax& m = transfer_.minmax;
+  if (type == GL_FLOAT) {
+    const int n = format_components(format);
+    float* out = static_cast<float*>(values);
+    for (int g = 0; g < 2; ++g) {
+      const Rgba& v = g == 0 ? m.min : m.max;
+      const double c[4] = {v[0], v[1], v[2], v[3]};
+      for (int k = 0; k < n; ++k) {
+        int src = k;
+        if (format == GL_ALPHA) src = 3;
+        else if (format == GL_GREEN) src = 1;
+        else if (format == GL_BLUE) src = 2;
+        else if (format == GL_LUMINANCE_ALPHA && k == 1) src = 3;
+        out[g * n + k] = static_cast<float>(c[src]);
+      }
+    }
+  } else {
+    pack_rgba({m.min, m.max}, 2, 1, format, type, PixelStore{false, false, 0, 0, 0, 1}, values);
+  }
+  if (reset) glResetMinmax(GL_MINMAX);
 }
 
 }  // namespace passim

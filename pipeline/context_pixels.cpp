@@ -199,8 +199,8 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
     std::vector<Rgba> rgba;
     unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
     int w = width, h = height;  // a REDUCE convolution shrinks the image
-    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), counters());
-    if (w > 0 && h > 0) draw_pixel_rectangle(w, h, &rgba, nullptr);
+    if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), counters()) && w > 0 && h > 0)
+      draw_pixel_rectangle(w, h, &rgba, nullptr);
   }
 }
 
@@ -229,8 +229,9 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     for (std::size_t p = 0; p < depth.size(); ++p) out[p] = {depth[p], 0, 0, 1};
   } else {
     read_framebuffer_rgba(x, y, width, height, out);
-    transfer_rgba(out, width, height, transfer_, transform_.color.back(), c);
-    if (width <= 0 || height <= 0) return;  // §4.3.2: REDUCE shrinks the image returned
+    // A sink consumes the pixels: nothing is returned. §4.3.2: REDUCE shrinks the image returned.
+    if (!transfer_rgba(out, width, height, transfer_, transform_.color.back(), c)) return;
+    if (width <= 0 || height <= 0) return;
     // §4.3.2: luminance is R + G + B (unweighted), clamped by the packing.
     if (format == GL_LUMINANCE || format == GL_LUMINANCE_ALPHA)
       for (Rgba& p : out) p[0] = p[0] + p[1] + p[2];
@@ -264,8 +265,8 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += rgba.size() * static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
     int w = width, h = height;
-    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c);
-    if (w > 0 && h > 0) draw_pixel_rectangle(w, h, &rgba, nullptr);
+    if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c) && w > 0 && h > 0)
+      draw_pixel_rectangle(w, h, &rgba, nullptr);
   }
 }
 

@@ -209,7 +209,8 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   } else {
     unpack_rgba(pixels, source_width, source_height, format, type, pixel_store_.unpack, rgba);
     int tw = source_width, th = source_height;
-    transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims);
+    // A sink consumes the pixels: the texels are not changed (the level is still defined).
+    if (!transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims)) return;
   }
   store_texels(l, 0, 0, l.width, l.height, rgba, format == GL_DEPTH_COMPONENT ? &depth : nullptr);
 }
@@ -280,7 +281,7 @@ void Context::read_for_texture(bool depth, int dims, int x, int y, int width, in
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
     int w = width, h = height;
-    transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims);
+    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims)) rgba.clear();
   }
 }
 
@@ -304,7 +305,7 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
   } else {
     unpack_rgba(pixels, source_width, source_height, format, type, pixel_store_.unpack, rgba);
     int tw = source_width, th = source_height;
-    transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims);
+    if (!transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims)) return;
   }
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba,
                format == GL_DEPTH_COMPONENT ? &depth : nullptr);
@@ -374,6 +375,7 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
   read_for_texture(is_depth, dims, x, y, width, dims == 2 ? height : 1, rgba, depth);
+  if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
   store_texels(l, 0, 0, l.width, l.height, rgba, is_depth ? &depth : nullptr);
 }
 
@@ -406,6 +408,7 @@ void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xof
   std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   read_for_texture(is_depth, dims, x, y, source_width, source_height, rgba, depth);
+  if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
   store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba, is_depth ? &depth : nullptr);
 }
 

@@ -53,6 +53,8 @@ struct Counters {
   std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE
   std::uint64_t post_convolution_table_lookups = 0;
   std::uint64_t post_color_matrix_table_lookups = 0;
+  std::uint64_t histogram_updates = 0;  // pixels counted
+  std::uint64_t minmax_updates = 0;
   std::uint64_t pixels_drawn = 0;          // groups drawn by DrawPixels / CopyPixels (before zoom)
   std::uint64_t pixels_read = 0;           // groups read by ReadPixels / CopyPixels / texture copies
   // accumulation buffer: pixels per operation
@@ -105,6 +107,8 @@ struct Counters {
     PASSIM_COUNTER(color_table_lookups)
     PASSIM_COUNTER(post_convolution_table_lookups)
     PASSIM_COUNTER(post_color_matrix_table_lookups)
+    PASSIM_COUNTER(histogram_updates)
+    PASSIM_COUNTER(minmax_updates)
     PASSIM_COUNTER(pixels_drawn)
     PASSIM_COUNTER(pixels_read)
     PASSIM_COUNTER(accum_accum_pixels)

@@ -2,6 +2,8 @@
 
 #include "pipeline/fixed_point.hpp"
 
+#include <algorithm>
+
 namespace passim {
 
 void color_table_lookup(const ColorTable& t, Rgba& c) {
@@ -35,7 +37,13 @@ const ConvolutionFilter* active_convolution(const PixelTransferState& s, int dim
   return nullptr;
 }
 
-void transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, const PixelTransferState& s, const Mat4& m,
+void Minmax::reset() {
+  const double big = 3.40282346638528859812e+38;  // FLT_MAX
+  min = {big, big, big, big};
+  max = {-big, -big, -big, -big};
+}
+
+bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
                    Counters& counters, int dims) {
   const bool scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
   const bool matrix = m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
@@ -78,6 +86,36 @@ void transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, const Pix
   if (use1) counters.post_convolution_table_lookups += n;
   if (use2) counters.post_color_matrix_table_lookups += n;
   counters.pixels_transferred += n_in;
+  // Step 9: HISTOGRAM — index round(clamp(c, 0, 1)·(W − 1)) per component the format has;
+  // counters saturate (A23). The pixels themselves are unchanged.
+  Histogram& h = s.histogram;
+  if (h.enabled && !h.counts.empty()) {
+    const double w1 = static_cast<double>(h.counts.size() - 1);
+    const bool has[4] = {h.base != GL_ALPHA, h.base == GL_RGB || h.base == GL_RGBA,
+                         h.base == GL_RGB || h.base == GL_RGBA,
+                         h.base == GL_ALPHA || h.base == GL_LUMINANCE_ALPHA || h.base == GL_RGBA};
+    for (const Rgba& p : pixels)
+      for (int k = 0; k < 4; ++k) {
+        if (!has[k]) continue;
+        const std::size_t i = static_cast<std::size_t>(round_half_up(clamp_nan_low(p[static_cast<std::size_t>(k)], 0.0, 1.0) * w1));
+        std::uint32_t& c = h.counts[i][static_cast<std::size_t>(k)];
+        if (c != 0xFFFFFFFFu) ++c;
+      }
+    counters.histogram_updates += n;
+    if (h.sink) return false;
+  }
+  // Step 10: MINMAX — unclamped values.
+  Minmax& mm = s.minmax;
+  if (mm.enabled) {
+    for (const Rgba& p : pixels)
+      for (std::size_t k = 0; k < 4; ++k) {
+        mm.min[k] = std::min(mm.min[k], p[k]);
+        mm.max[k] = std::max(mm.max[k], p[k]);
+      }
+    counters.minmax_updates += n;
+    if (mm.sink) return false;
+  }
+  return true;
 }
 
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& s) {

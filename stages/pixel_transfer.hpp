@@ -3,6 +3,7 @@
 // No clamp anywhere in between (clamping happens at the final conversion).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "pipeline/counters.hpp"
@@ -24,6 +25,23 @@ struct ColorTable {
 
 enum ColorTableIndex { kColorTable = 0, kPostConvolutionTable = 1, kPostColorMatrixTable = 2 };
 
+// HISTOGRAM and MINMAX (ARB_imaging, §3.6.5 steps 9-10).
+struct Histogram {
+  bool enabled = false;
+  GLenum internal_format = GL_RGBA;
+  GLenum base = GL_RGBA;
+  bool sink = false;
+  std::vector<std::array<std::uint32_t, 4>> counts;  // width entries; L counted in [0]
+};
+struct Minmax {
+  bool enabled = false;
+  GLenum internal_format = GL_RGBA;
+  GLenum base = GL_RGBA;
+  bool sink = false;
+  Rgba min{}, max{};  // reset: min = +FLT_MAX, max = −FLT_MAX (A23)
+  void reset();
+};
+
 // Table 6.17 (pixel transfer).
 struct PixelTransferState {
   Vec4 scale{1.0, 1.0, 1.0, 1.0}, bias{0.0, 0.0, 0.0, 0.0};
@@ -36,6 +54,8 @@ struct PixelTransferState {
   ConvolutionFilter filter_1d, filter_2d, filter_separable;
   bool convolution_1d = false, convolution_2d = false, separable_2d = false;
   Vec4 post_convolution_scale{1.0, 1.0, 1.0, 1.0}, post_convolution_bias{0.0, 0.0, 0.0, 0.0};
+  Histogram histogram;
+  Minmax minmax;
 };
 
 // Which convolution an operation uses (§3.6.5): CONVOLUTION_1D for 1D textures; for 2D images
@@ -48,7 +68,9 @@ void color_table_lookup(const ColorTable& table, Rgba& c);
 
 // Applies the RGBA transfer operations to a width x height image in place, in the spec's
 // order; a REDUCE convolution changes width and height. `dims` is 1 for 1D textures.
-void transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, const PixelTransferState& state,
+// Returns false when a histogram or minmax sink consumed the pixels (nothing further is
+// drawn, returned or stored).
+bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& state,
                    const Mat4& color_matrix, Counters& counters, int dims = 2);
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& state);
 

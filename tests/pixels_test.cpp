@@ -266,3 +266,46 @@ TEST(Imaging, ConvolutionBorderModesAndReduceSizes) {
   ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_LUMINANCE, 13, 13, GL_LUMINANCE, GL_FLOAT, big.data());
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
 }
+
+TEST(Imaging, HistogramAndMinmaxOfAKnownImage) {
+  // Luminance image 0, 1/3, 2/3, 1, 1 (as floats) drawn through a 4-entry LUMINANCE
+  // histogram: indices round(v·3) = 0, 1, 2, 3, 3 -> counts 1, 1, 1, 2. Minmax (RGBA) sees
+  // the unclamped red values after a bias of −0.5: min −0.5, max 0.5.
+  Context ctx(test::small_config(5, 1));
+  test::window_projection(ctx);
+  ctx.glHistogram(GL_HISTOGRAM, 4, GL_LUMINANCE, GL_FALSE);
+  ctx.glEnable(GL_HISTOGRAM);
+  ctx.glMinmax(GL_MINMAX, GL_RGBA, GL_FALSE);
+  ctx.glEnable(GL_MINMAX);
+  ctx.glPixelTransferf(GL_RED_BIAS, -0.5f);
+  const GLfloat img[5] = {0.0f, 1.0f / 3, 2.0f / 3, 1.0f, 1.0f};
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(5, 1, GL_LUMINANCE, GL_FLOAT, img);
+  GLuint counts[4];
+  ctx.glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_LUMINANCE, GL_UNSIGNED_INT, counts);
+  // With the red bias the luminance (red) values are −0.5, −1/6, 1/6, 0.5, 0.5:
+  // clamped then indexed: 0, 0, round(0.5) = 1 (ties up), round(1.5) = 2, 2.
+  EXPECT_EQ(counts[0], 2u);
+  EXPECT_EQ(counts[1], 1u);
+  EXPECT_EQ(counts[2], 2u);
+  EXPECT_EQ(counts[3], 0u);
+  GLfloat mm[8];
+  ctx.glGetMinmax(GL_MINMAX, GL_TRUE, GL_RGBA, GL_FLOAT, mm);
+  EXPECT_FLOAT_EQ(mm[0], -0.5f);
+  EXPECT_FLOAT_EQ(mm[4], 0.5f);
+  EXPECT_FLOAT_EQ(mm[1], 0.0f);  // green: 0 .. 1
+  EXPECT_FLOAT_EQ(mm[5], 1.0f);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 5u);  // no sink: the pixels are drawn
+  // With a histogram sink nothing reaches the framebuffer; counting goes on.
+  ctx.glHistogram(GL_HISTOGRAM, 4, GL_LUMINANCE, GL_TRUE);
+  ctx.glDrawPixels(5, 1, GL_LUMINANCE, GL_FLOAT, img);
+  ctx.glGetHistogram(GL_HISTOGRAM, GL_TRUE, GL_LUMINANCE, GL_UNSIGNED_INT, counts);
+  EXPECT_EQ(counts[0] + counts[1] + counts[2] + counts[3], 5u);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 5u);
+  ctx.glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_LUMINANCE, GL_UNSIGNED_INT, counts);
+  EXPECT_EQ(counts[0] + counts[1] + counts[2] + counts[3], 0u);  // reset by the previous get
+  ctx.glHistogram(GL_HISTOGRAM, 3, GL_LUMINANCE, GL_FALSE);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  ctx.glHistogram(GL_HISTOGRAM, 4, GL_INTENSITY, GL_FALSE);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+}
