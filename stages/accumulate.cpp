@@ -19,6 +19,11 @@ void accumulate(GLenum op, double value, const AccumRegion& r, const ColorPlane&
   int mask_bits = 0;
   for (int k = 0; k < 4; ++k)
     if (mask[k]) mask_bits += cfg.color_bits[k];
+  const double* read_values[4];
+  for (int k = 0; k < 4; ++k) read_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
+  auto read_value = [&](std::size_t p, int k) {
+    return read_values[k] ? read_values[k][read.rgba[4 * p + static_cast<std::size_t>(k)]] : 1.0;  // no alpha: 1
+  };
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
       const std::size_t p = fb.pixel_index(x, y);
@@ -36,8 +41,8 @@ void accumulate(GLenum op, double value, const AccumRegion& r, const ColorPlane&
         const double a = acc[k] / scale;
         double result;
         switch (op) {
-          case GL_ACCUM: result = a + value * fixed_to_float(read.rgba[4 * p + k], cfg.color_bits[k]); break;
-          case GL_LOAD: result = value * fixed_to_float(read.rgba[4 * p + k], cfg.color_bits[k]); break;
+          case GL_ACCUM: result = a + value * read_value(p, k); break;
+          case GL_LOAD: result = value * read_value(p, k); break;
           case GL_ADD: result = a + value; break;
           default: result = a * value; break;  // GL_MULT
         }
