@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "pipeline/report.hpp"
@@ -221,5 +223,27 @@ TEST(TraceRecord, ExampleTracesReRecordToTheSameBits) {
     ASSERT_EQ(first.images.size(), second.images.size()) << name;
     for (std::size_t k = 0; k < first.images.size(); ++k) EXPECT_EQ(first.images[k].hash, second.images[k].hash) << name;
     EXPECT_TRUE(first.context->total_counters() == second.context->total_counters()) << name;
+  }
+}
+
+TEST(TraceParse, MeshDirectiveDrawsAnObjFile) {
+  // A one-triangle OBJ covering the lower-left half of a 4x4 window (ortho 0..4):
+  // centres with x + y < 3 (x + y = 3 lies on the hypotenuse, a right/top edge): 6 fragments.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "passim-mesh-test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream obj(dir / "tri.obj");
+    obj << "v 0 0 0\nv 4 0 0\nv 0 4 0\nvn 0 0 1\nf 1//1 2//1 3//1\n";
+  }
+  const std::string text = "passim-trace 1\n@framebuffer 4x4 color=8 double=no\n"
+                           "glMatrixMode(GL_PROJECTION)\nglOrtho(0, 4, 0, 4, -1, 1)\n@mesh \"tri.obj\"\n";
+  ReplayResult r = replay_trace_text(text, "mesh.pass", dir);
+  EXPECT_EQ(r.context->total_counters().fragments_generated, 6u);
+  EXPECT_EQ(r.context->total_counters().primitives_in, 1u);
+  try {
+    replay_trace_text("passim-trace 1\n@mesh \"missing.obj\"\n", "mesh.pass", dir);
+    ADD_FAILURE() << "a missing mesh was accepted";
+  } catch (const TraceError& e) {
+    EXPECT_EQ(e.line, 2);
   }
 }
