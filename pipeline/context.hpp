@@ -321,6 +321,20 @@ class Context {
   friend class ContextTestAccess;
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
   void set_error(GLenum error);
+  // The scalar (glXxxi/f) and vector (glXxxfv) forms of a parameter call: a scalar call with a
+  // vector-valued pname is INVALID_ENUM; both hand the setter four doubles.
+  template <class Setter>
+  void scalar_parameter(bool vector_pname, double value, Setter&& set) {
+    if (vector_pname) return set_error(GL_INVALID_ENUM);
+    const double v[4] = {value, 0.0, 0.0, 0.0};
+    set(v);
+  }
+  template <class T, class Setter>
+  void vector_parameter(const T* params, int n, Setter&& set) {
+    double v[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int k = 0; k < n && k < 4; ++k) v[k] = static_cast<double>(params[k]);
+    set(v);
+  }
   bool set_capability(GLenum cap, bool value);
   bool get_state(GLenum pname, std::vector<double>& out, bool& is_color) const;
   std::vector<Mat4>& current_stack();

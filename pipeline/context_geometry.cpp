@@ -833,9 +833,7 @@ void Context::glLightfv(GLenum light, GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
   PASSIM_ENTRY(light, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
   if (n == 0) return set_error(GL_INVALID_ENUM);
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_light_param(light, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_light_param(light, pname, v); });
 }
 
 void Context::set_light_model_param(GLenum pname, const double* v) {
@@ -871,9 +869,7 @@ void Context::glLightModelfv(GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
   PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
   if (n == 0) return set_error(GL_INVALID_ENUM);
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_light_model_param(pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_light_model_param(pname, v); });
 }
 
 void Context::set_material_param(GLenum face, GLenum pname, const double* v) {
@@ -908,9 +904,7 @@ void Context::glMaterialfv(GLenum face, GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
   PASSIM_ENTRY(face, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
   if (n == 0 || pname == GL_SPOT_DIRECTION) return set_error(GL_INVALID_ENUM);
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_material_param(face, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_material_param(face, pname, v); });
 }
 
 void Context::glColorMaterial(GLenum face, GLenum mode) {

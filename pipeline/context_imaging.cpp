@@ -270,17 +270,15 @@ void Context::set_convolution_parameter(GLenum target, GLenum pname, const doubl
 
 void Context::glConvolutionParameteri(GLenum target, GLenum pname, GLint param) {
   PASSIM_ENTRY(target, pname, param)
-  if (pname != GL_CONVOLUTION_BORDER_MODE) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_convolution_parameter(target, pname, v);
+  scalar_parameter(pname != GL_CONVOLUTION_BORDER_MODE, param, [&](const double* v) {
+    set_convolution_parameter(target, pname, v);
+  });
 }
 
 void Context::glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_CONVOLUTION_BORDER_MODE ? 1 : 4;
   PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_convolution_parameter(target, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_convolution_parameter(target, pname, v); });
 }
 
 }  // namespace passim

@@ -516,24 +516,22 @@ void Context::set_tex_parameter(GLenum target, GLenum pname, const double* v) {
 
 void Context::glTexParameteri(GLenum target, GLenum pname, GLint param) {
   PASSIM_ENTRY(target, pname, param)
-  if (pname == GL_TEXTURE_BORDER_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_parameter(target, pname, v);
+  scalar_parameter(pname == GL_TEXTURE_BORDER_COLOR, param, [&](const double* v) {
+    set_tex_parameter(target, pname, v);
+  });
 }
 
 void Context::glTexParameterf(GLenum target, GLenum pname, GLfloat param) {
   PASSIM_ENTRY(target, pname, param)
-  if (pname == GL_TEXTURE_BORDER_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_parameter(target, pname, v);
+  scalar_parameter(pname == GL_TEXTURE_BORDER_COLOR, param, [&](const double* v) {
+    set_tex_parameter(target, pname, v);
+  });
 }
 
 void Context::glTexParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_BORDER_COLOR ? 4 : 1;
   PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_tex_parameter(target, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_tex_parameter(target, pname, v); });
 }
 
 void Context::glGetTexParameterfv(GLenum target, GLenum pname, GLfloat* params) {
@@ -620,24 +618,18 @@ void Context::set_tex_env(GLenum target, GLenum pname, const double* v) {
 
 void Context::glTexEnvi(GLenum target, GLenum pname, GLint param) {
   PASSIM_ENTRY(target, pname, param)
-  if (pname == GL_TEXTURE_ENV_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_env(target, pname, v);
+  scalar_parameter(pname == GL_TEXTURE_ENV_COLOR, param, [&](const double* v) { set_tex_env(target, pname, v); });
 }
 
 void Context::glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
   PASSIM_ENTRY(target, pname, param)
-  if (pname == GL_TEXTURE_ENV_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_env(target, pname, v);
+  scalar_parameter(pname == GL_TEXTURE_ENV_COLOR, param, [&](const double* v) { set_tex_env(target, pname, v); });
 }
 
 void Context::glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_ENV_COLOR ? 4 : 1;
   PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_tex_env(target, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_tex_env(target, pname, v); });
 }
 
 // ---------------------------------------------------------------- coordinate generation (§2.10.4)
@@ -664,32 +656,24 @@ void Context::set_tex_gen(GLenum coord, GLenum pname, const double* v) {
 
 void Context::glTexGeni(GLenum coord, GLenum pname, GLint param) {
   PASSIM_ENTRY(coord, pname, param)
-  if (pname != GL_TEXTURE_GEN_MODE) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_gen(coord, pname, v);
+  scalar_parameter(pname != GL_TEXTURE_GEN_MODE, param, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
 void Context::glTexGenf(GLenum coord, GLenum pname, GLfloat param) {
   PASSIM_ENTRY(coord, pname, param)
-  if (pname != GL_TEXTURE_GEN_MODE) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_tex_gen(coord, pname, v);
+  scalar_parameter(pname != GL_TEXTURE_GEN_MODE, param, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
 void Context::glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
   PASSIM_ENTRY(coord, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_tex_gen(coord, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
 void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
   const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
   PASSIM_ENTRY(coord, pname, ArrayArg<GLdouble>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_tex_gen(coord, pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
 // ---------------------------------------------------------------- per primitive
@@ -755,24 +739,18 @@ void Context::set_fog(GLenum pname, const double* v) {
 
 void Context::glFogf(GLenum pname, GLfloat param) {
   PASSIM_ENTRY(pname, param)
-  if (pname == GL_FOG_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_fog(pname, v);
+  scalar_parameter(pname == GL_FOG_COLOR, param, [&](const double* v) { set_fog(pname, v); });
 }
 
 void Context::glFogi(GLenum pname, GLint param) {
   PASSIM_ENTRY(pname, param)
-  if (pname == GL_FOG_COLOR) return set_error(GL_INVALID_ENUM);
-  const double v[4] = {static_cast<double>(param), 0, 0, 0};
-  set_fog(pname, v);
+  scalar_parameter(pname == GL_FOG_COLOR, param, [&](const double* v) { set_fog(pname, v); });
 }
 
 void Context::glFogfv(GLenum pname, const GLfloat* params) {
   const int n = pname == GL_FOG_COLOR ? 4 : 1;
   PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
-  double v[4] = {0, 0, 0, 0};
-  for (int k = 0; k < n; ++k) v[k] = params[k];
-  set_fog(pname, v);
+  vector_parameter(params, n, [&](const double* v) { set_fog(pname, v); });
 }
 
 }  // namespace passim
