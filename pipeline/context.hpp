@@ -318,7 +318,6 @@ class Context {
   };
 
  private:
-  friend class ContextTestAccess;
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
   void set_error(GLenum error);
   // The scalar (glXxxi/f) and vector (glXxxfv) forms of a parameter call: a scalar call with a
