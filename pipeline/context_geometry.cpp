@@ -522,13 +522,17 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   if (provoking.light_pending) {
     // Light the polygon's vertices for the face that is drawn, then clip again with the lit
     // colours (the same clip, so the same positions; trivially inside polygons skip it).
-    poly.clear();
-    for (int k = 0; k < count; ++k) {
-      poly.push_back(*vertices[k]);
-      light_pending_vertex(poly.back(), face);
+    if (cut) {
+      poly.clear();
+      for (int k = 0; k < count; ++k) {
+        poly.push_back(*vertices[k]);
+        light_pending_vertex(poly.back(), face);
+      }
+      clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut);
+    } else {
+      for (ProcessedVertex& v : poly) light_pending_vertex(v, face);  // poly holds the vertices themselves
     }
     light_pending_vertex(flat_source, face);
-    if (cut) clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut);
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[static_cast<std::size_t>(face)];
   } else if (face == 1) {
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
