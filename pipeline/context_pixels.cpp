@@ -121,6 +121,8 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
   for (int k = 0; k < 4; ++k) raster_codes[k] = static_cast<std::uint16_t>(float_to_fixed(raster_.color[k], fragment_bits_[k]));
   const double s = rp.tex[0] / rp.tex[3], t = rp.tex[1] / rp.tex[3], r = rp.tex[2] / rp.tex[3];
   SpanBuffers& buf = scratch_->spans;
+  // Texture coordinates and the fog coordinate are written only when a stage reads them.
+  const bool per_fragment_extras = options.texcoords || options.fog;
   for (int j = 0; j < height; ++j) {
     int row_lo, row_hi;
     pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), row_lo, row_hi);
@@ -145,11 +147,13 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
             for (int k = 0; k < 4; ++k) out[k] = raster_codes[k];
             span.depth[count] = fb_.config.depth_bits ? float_to_fixed((*depth)[src], fb_.config.depth_bits) : 0;
           }
-          span.s[count] = s;
-          span.t[count] = t;
-          span.r[count] = r;
-          span.lambda[count] = 0.0;  // ρ = 1 for pixel rectangles
-          span.fog[count] = std::fabs(rp.eye_z);
+          if (per_fragment_extras) {
+            span.s[count] = s;
+            span.t[count] = t;
+            span.r[count] = r;
+            span.lambda[count] = 0.0;  // ρ = 1 for pixel rectangles
+            span.fog[count] = std::fabs(rp.eye_z);
+          }
           ++count;
         }
       }

@@ -47,14 +47,21 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
       return {f.border_color.r, f.border_color.g, f.border_color.b, f.border_color.a};
     return image[static_cast<std::size_t>(std::clamp(y, 0, hs - 1) * ws + std::clamp(x, 0, ws - 1))];  // REPLICATE
   };
+  // The taps once (a separable filter's row x column products), in (n, m) order.
+  std::vector<Rgba> taps(static_cast<std::size_t>(wf) * static_cast<std::size_t>(hf));
+  for (int m = 0; m < hf; ++m)
+    for (int n = 0; n < wf; ++n) taps[static_cast<std::size_t>(n + m * wf)] = f.tap(n, m);
   std::vector<Rgba> out(static_cast<std::size_t>(wo) * static_cast<std::size_t>(ho));
   for (int j = 0; j < ho; ++j)
     for (int i = 0; i < wo; ++i) {
       double sum[4] = {0, 0, 0, 0};
+      // Inside the image the source is read directly; near the edges through the border rule.
+      const bool inside = i - cw >= 0 && i - cw + wf <= ws && j - ch >= 0 && j - ch + hf <= hs;
       for (int m = 0; m < hf; ++m)
         for (int n = 0; n < wf; ++n) {
-          const Rgba s = at(i - cw + n, j - ch + m);
-          const Rgba t = f.tap(n, m);
+          const int x = i - cw + n, y = j - ch + m;
+          const Rgba s = inside ? image[static_cast<std::size_t>(y * ws + x)] : at(x, y);
+          const Rgba& t = taps[static_cast<std::size_t>(n + m * wf)];
           for (int k = 0; k < 4; ++k)
             if (conv[k]) sum[k] += s[static_cast<std::size_t>(k)] * t[static_cast<std::size_t>(source[k])];
         }
