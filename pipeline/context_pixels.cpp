@@ -130,10 +130,18 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
       // Gather the fragments of this window row in increasing x.
       int count = 0, x_first = 0;
       FragmentSpan span = buf.span(y, 0, 0);
+      const bool unit_zoom = zx == 1.0;
+      const int xr_int = static_cast<int>(std::clamp(xr, -1.0e9, 1.0e9));
       for (int step = 0; step < width; ++step) {
         const int i = zx >= 0 ? step : width - 1 - step;
         int lo, hi;
-        pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
+        if (unit_zoom) {
+          // Zoom 1: group i covers [xr + i, xr + i + 1), whose only centre is pixel xr + i.
+          lo = hi = xr_int + i;
+          if (lo < 0 || lo >= fb_.width()) continue;
+        } else {
+          pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
+        }
         for (int x = lo; x <= hi; ++x) {
           if (count == 0) x_first = x;
           const std::size_t src = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);

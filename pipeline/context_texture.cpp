@@ -337,6 +337,8 @@ void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::ve
   // window are undefined: they read as 0 here.
   const ColorPlane* plane = color_buffer(pixel_.read_buffer);
   const auto& bits = fb_.config.color_bits;
+  const double* values[4];
+  for (int k = 0; k < 4; ++k) values[k] = bits[k] ? code_values(bits[k]) : nullptr;
   out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), Rgba{0, 0, 0, 0});
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {
@@ -344,7 +346,7 @@ void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::ve
       if (px < 0 || py < 0 || px >= fb_.width() || py >= fb_.height()) continue;
       const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(px, py)];
       Rgba& o = out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)];
-      for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = fixed_to_float(c[k], bits[k]);
+      for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = values[k] ? values[k][c[k]] : 1.0;
     }
 }
 
