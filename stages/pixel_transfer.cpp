@@ -9,9 +9,11 @@ namespace passim {
 void color_table_lookup(const ColorTable& t, Rgba& c) {
   const std::size_t w = t.entries.size();
   if (w == 0) return;
+  const double w1 = static_cast<double>(w - 1);
   auto at = [&](int k) {
     const double v = clamp_nan_low(c[static_cast<std::size_t>(k)], 0.0, 1.0);
-    return static_cast<std::size_t>(round_half_up(v * static_cast<double>(w - 1)));
+    // round(v·(W − 1)) with ties up; the argument is >= 0.5, so truncation is the floor.
+    return static_cast<std::size_t>(v * w1 + 0.5);
   };
   const std::size_t r = at(0), g = at(1), b = at(2), a = at(3);
   switch (t.base) {
