@@ -64,7 +64,7 @@ std::vector<CallInfo::Param> parse_signature(std::string_view sig) {
   std::vector<CallInfo::Param> params;
   for (std::size_t i = 0; i < sig.size(); ++i) {
     CallInfo::Param p{sig[i], 0, 0};
-    if (std::strchr("FDIUBV", sig[i])) {
+    if (std::strchr("FDIUBVH", sig[i])) {
       char next = i + 1 < sig.size() ? sig[i + 1] : 0;
       if (next == 'p' || next == '*') {
         p.count_rule = next;
@@ -267,6 +267,8 @@ const std::vector<CallInfo>& table() {
       ROW(glPixelZoom, "ff", kNone),
       ROW(glPixelTransferf, "ey", kNone),
       ROW(glPixelTransferi, "ex", kNone),
+      ROW(glPixelMapfv, "eiF*", kNone),
+      ROW(glPixelMapusv, "eiH*", kNone),
       ROW(glDrawPixels, "iieeV*", kNone),
       ROW(glReadPixels, "iiiieeO", kQuery),
       ROW(glCopyPixels, "iiiie", kNone),

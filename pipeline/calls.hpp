@@ -32,6 +32,7 @@ struct Value {
 //   b bitfield   i int   u uint   c GLubyte   f float   d double   s string
 //   x int that may hold an enum value   y float that may hold an enum value
 //   F const GLfloat*   D const GLdouble*   I const GLint*   U const GLuint*   B const GLubyte*
+//   H const GLushort*
 //   V const void* whose element type is the closest preceding 'e' argument
 //   O output array (queries; ignored when replayed)
 // An array letter is followed by its element count: a number, 'p' (by the

@@ -241,6 +241,8 @@ class Context {
   void glPixelZoom(GLfloat xfactor, GLfloat yfactor);
   void glPixelTransferf(GLenum pname, GLfloat param);
   void glPixelTransferi(GLenum pname, GLint param);
+  void glPixelMapfv(GLenum map, GLsizei mapsize, const GLfloat* values);
+  void glPixelMapusv(GLenum map, GLsizei mapsize, const GLushort* values);
   void glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels);
   void glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void* pixels);
   void glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type);
@@ -391,6 +393,7 @@ class Context {
   FragmentSink& fragment_sink();
   void set_fog(GLenum pname, const double* v);
   void set_raster_position(const Vec4& object);
+  void set_pixel_map(GLenum map, GLsizei mapsize, const double* values);
   void define_color_table(int index, GLenum internalformat, int width, int start, const std::vector<Rgba>& rgba);
   bool check_table_format(GLenum internalformat);
   ConvolutionFilter* filter_for(GLenum target);

@@ -80,10 +80,7 @@ void Context::glPixelTransferf(GLenum pname, GLfloat param) {
     case GL_POST_CONVOLUTION_GREEN_BIAS: t.post_convolution_bias.g = v; break;
     case GL_POST_CONVOLUTION_BLUE_BIAS: t.post_convolution_bias.b = v; break;
     case GL_POST_CONVOLUTION_ALPHA_BIAS: t.post_convolution_bias.a = v; break;
-    case GL_MAP_COLOR:
-      t.map_color = v != 0.0;
-      if (t.map_color) warn_once("GL_MAP_COLOR is on, but pixel maps are not modelled yet: it has no effect");
-      break;
+    case GL_MAP_COLOR: t.map_color = v != 0.0; break;
     case GL_MAP_STENCIL: t.map_stencil = v != 0.0; break;
     case GL_INDEX_SHIFT: t.index_shift = static_cast<int>(v); break;
     case GL_INDEX_OFFSET: t.index_offset = static_cast<int>(v); break;
@@ -94,6 +91,40 @@ void Context::glPixelTransferf(GLenum pname, GLfloat param) {
 void Context::glPixelTransferi(GLenum pname, GLint param) {
   PASSIM_ENTRY(pname, param)
   glPixelTransferf(pname, static_cast<GLfloat>(param));
+}
+
+// ---------------------------------------------------------------- pixel maps (§3.6.3)
+
+void Context::set_pixel_map(GLenum map, GLsizei mapsize, const double* values) {
+  const bool is_color = map >= GL_PIXEL_MAP_R_TO_R && map <= GL_PIXEL_MAP_A_TO_A;
+  const bool is_index = map >= GL_PIXEL_MAP_I_TO_I && map <= GL_PIXEL_MAP_I_TO_A;
+  if (!is_color && !is_index) return set_error(GL_INVALID_ENUM);
+  if (mapsize < 1 || mapsize > profile_.limits.max_pixel_map_table) return set_error(GL_INVALID_VALUE);
+  // I_TO_* and S_TO_S maps must be a power of two in size.
+  if (!is_color && (mapsize & (mapsize - 1)) != 0) return set_error(GL_INVALID_VALUE);
+  std::vector<double> entries(static_cast<std::size_t>(mapsize));
+  for (GLsizei k = 0; k < mapsize; ++k)
+    entries[static_cast<std::size_t>(k)] = is_color ? clamp_nan_low(values[k], 0.0, 1.0) : values[k];  // A19
+  if (is_color) transfer_.color_maps[map - GL_PIXEL_MAP_R_TO_R] = std::move(entries);
+  else transfer_.other_maps[map - GL_PIXEL_MAP_I_TO_I] = std::move(entries);
+  if (map == GL_PIXEL_MAP_I_TO_I || map == GL_PIXEL_MAP_S_TO_S || (map >= GL_PIXEL_MAP_I_TO_R && map <= GL_PIXEL_MAP_I_TO_A))
+    warn_once("index pixel maps are stored, but colour-index and stencil rectangles are not modelled yet");
+}
+
+void Context::glPixelMapfv(GLenum map, GLsizei mapsize, const GLfloat* values) {
+  PASSIM_ENTRY(map, mapsize, ArrayArg<GLfloat>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  std::vector<double> v(mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = values[k];
+  set_pixel_map(map, mapsize, v.data());
+}
+
+void Context::glPixelMapusv(GLenum map, GLsizei mapsize, const GLushort* values) {
+  PASSIM_ENTRY(map, mapsize, ArrayArg<GLushort>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  // Colour maps given as integers are normalised (Table 2.6); index maps keep the integer.
+  const bool is_color = map >= GL_PIXEL_MAP_R_TO_R && map <= GL_PIXEL_MAP_A_TO_A;
+  std::vector<double> v(mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = is_color ? values[k] / 65535.0 : values[k];
+  set_pixel_map(map, mapsize, v.data());
 }
 
 // ---------------------------------------------------------------- rectangles to fragments (§3.6.4)

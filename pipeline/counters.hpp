@@ -48,6 +48,7 @@ struct Counters {
   std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
   std::uint64_t pixels_scale_bias = 0;
   std::uint64_t pixels_color_matrix = 0;
+  std::uint64_t pixels_mapped = 0;  // groups through MAP_COLOR
   std::uint64_t pixels_convolved = 0;
   std::uint64_t convolution_taps = 0;               // multiply-adds (per pixel and tap)
   std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE
@@ -102,6 +103,7 @@ struct Counters {
     PASSIM_COUNTER(pixels_transferred)
     PASSIM_COUNTER(pixels_scale_bias)
     PASSIM_COUNTER(pixels_color_matrix)
+    PASSIM_COUNTER(pixels_mapped)
     PASSIM_COUNTER(pixels_convolved)
     PASSIM_COUNTER(convolution_taps)
     PASSIM_COUNTER(color_table_lookups)

@@ -309,6 +309,7 @@ GLenum array_elem_type(char kind) {
     case 'I': return GL_INT;
     case 'U': return GL_UNSIGNED_INT;
     case 'B': return GL_UNSIGNED_BYTE;
+    case 'H': return GL_UNSIGNED_SHORT;
     default: return 0;
   }
 }
@@ -698,6 +699,9 @@ class Replayer {
     // Pointer arguments whose length another argument gives.
     if (fn == "glDrawElements" && values[1].i > 0 && values[3].count < static_cast<std::size_t>(values[1].i))
       fail(fmt::format("glDrawElements: count is {} but {} indices are given", values[1].i, values[3].count));
+    if ((fn == "glPixelMapfv" || fn == "glPixelMapusv") && values[1].i > 0 &&
+        values[2].count < static_cast<std::size_t>(values[1].i))
+      fail(fmt::format("{}: mapsize is {} but {} values are given", fn, values[1].i, values[2].count));
     if (fn == "glCallLists" && values[0].i > 0 && values[2].count < static_cast<std::size_t>(values[0].i))
       fail(fmt::format("glCallLists: n is {} but {} names are given", values[0].i, values[2].count));
 

@@ -59,6 +59,13 @@ bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTran
   for (Rgba& p : pixels) {
     if (scale_bias)
       for (int k = 0; k < 4; ++k) p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.scale[k] + s.bias[k];
+    // Step 3: MAP_COLOR — clamp, index round(c·(size − 1)), replace by the map's entry.
+    if (s.map_color)
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::vector<double>& map = s.color_maps[k];
+        const double v = clamp_nan_low(p[k], 0.0, 1.0);
+        p[k] = map[static_cast<std::size_t>(v * static_cast<double>(map.size() - 1) + 0.5)];
+      }
     if (use0) color_table_lookup(t0, p);
   }
   // Step 5: convolution, then the post-convolution scale and bias (only when a convolution
@@ -83,6 +90,7 @@ bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTran
   }
   const std::uint64_t n = pixels.size();
   if (scale_bias) counters.pixels_scale_bias += n_in;
+  if (s.map_color) counters.pixels_mapped += n_in;
   if (use0) counters.color_table_lookups += n_in;
   if (matrix) counters.pixels_color_matrix += n;
   if (use1) counters.post_convolution_table_lookups += n;

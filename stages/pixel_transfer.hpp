@@ -56,6 +56,10 @@ struct PixelTransferState {
   Vec4 post_convolution_scale{1.0, 1.0, 1.0, 1.0}, post_convolution_bias{0.0, 0.0, 0.0, 0.0};
   Histogram histogram;
   Minmax minmax;
+  // PixelMap R_TO_R, G_TO_G, B_TO_B, A_TO_A (A19: entries clamped when given); initial {0}.
+  std::array<std::vector<double>, 4> color_maps{std::vector<double>{0.0}, std::vector<double>{0.0},
+                                                std::vector<double>{0.0}, std::vector<double>{0.0}};
+  std::vector<std::vector<double>> other_maps = std::vector<std::vector<double>>(6, std::vector<double>{0.0});
 };
 
 // Which convolution an operation uses (§3.6.5): CONVOLUTION_1D for 1D textures; for 2D images

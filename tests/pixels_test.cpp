@@ -309,3 +309,28 @@ TEST(Imaging, HistogramAndMinmaxOfAKnownImage) {
   ctx.glHistogram(GL_HISTOGRAM, 4, GL_INTENSITY, GL_FALSE);
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
 }
+
+TEST(Imaging, PixelMapColor) {
+  // R_TO_R of size 3 {0, 0.25, 1}: red 0.5 -> index round(0.5·2) = 1 -> 0.25; 0.2 -> 0 -> 0.
+  // Entries are clamped when given (A19): 1.5 -> 1. The other maps keep their initial {0}.
+  Context ctx(test::small_config(2, 1));
+  test::window_projection(ctx);
+  const GLfloat map[3] = {0.0f, 0.25f, 1.5f};
+  ctx.glPixelMapfv(GL_PIXEL_MAP_R_TO_R, 3, map);
+  const GLfloat ones[1] = {1.0f};
+  ctx.glPixelMapfv(GL_PIXEL_MAP_G_TO_G, 1, ones);
+  ctx.glPixelMapfv(GL_PIXEL_MAP_B_TO_B, 1, ones);
+  ctx.glPixelMapfv(GL_PIXEL_MAP_A_TO_A, 1, ones);
+  ctx.glPixelTransferi(GL_MAP_COLOR, GL_TRUE);
+  const GLfloat px[8] = {0.5f, 0, 0, 1, 0.9f, 0, 0, 1};
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(2, 1, GL_RGBA, GL_FLOAT, px);
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 64u);   // 0.25·255 = 63.75 -> 64
+  EXPECT_EQ(pixel(ctx, 1, 0)[0], 255u);  // 0.9 -> index round(1.8) = 2 -> clamped 1.5 -> 1
+  EXPECT_EQ(pixel(ctx, 0, 0)[1], 255u);
+  EXPECT_EQ(ctx.total_counters().pixels_mapped, 2u);
+  ctx.glPixelMapfv(GL_PIXEL_MAP_I_TO_R, 3, map);  // index maps must be 2^k
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  ctx.glPixelMapfv(GL_PIXEL_MAP_R_TO_R, 0, map);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+}
