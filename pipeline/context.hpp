@@ -318,6 +318,13 @@ class Context {
     GLenum type;
     std::size_t count;
   };
+  // The array argument of an image call: the elements a width x height image of
+  // format/type reads under the current unpack modes (0 for no data or a rejected call).
+  RawArrayArg image_arg(const void* data, int width, int height, GLenum format, GLenum type) const {
+    const int size = type_size(type);
+    if (!data || width <= 0 || height <= 0 || format_components(format) == 0 || size == 0) return {data, type, 0};
+    return {data, type, image_bytes(width, height, format, type, pixel_store_.unpack) / static_cast<std::size_t>(size)};
+  }
 
  private:
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);

@@ -53,10 +53,7 @@ bool Context::check_table_format(GLenum internalformat) {
 void Context::glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                            const void* table) {
   PASSIM_ENTRY(target, internalformat, width, format, type,
-               RawArrayArg{table, type, table && width > 0 && format_components(format) > 0 && type_size(type) > 0
-                                            ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
-                                                  static_cast<std::size_t>(type_size(type))
-                                            : 0u})
+               image_arg(table, width, 1, format, type))
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   if (!check_table_format(internalformat)) return;
@@ -74,10 +71,7 @@ void Context::glColorTable(GLenum target, GLenum internalformat, GLsizei width, 
 void Context::glColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format, GLenum type,
                               const void* data) {
   PASSIM_ENTRY(target, start, count, format, type,
-               RawArrayArg{data, type, data && count > 0 && format_components(format) > 0 && type_size(type) > 0
-                                           ? image_bytes(count, 1, format, type, pixel_store_.unpack) /
-                                                 static_cast<std::size_t>(type_size(type))
-                                           : 0u})
+               image_arg(data, count, 1, format, type))
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
@@ -178,10 +172,7 @@ void Context::define_filter(ConvolutionFilter& f, GLenum internalformat, int wid
 void Context::glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                                     const void* image) {
   PASSIM_ENTRY(target, internalformat, width, format, type,
-               RawArrayArg{image, type, image && width > 0 && format_components(format) > 0 && type_size(type) > 0
-                                            ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
-                                                  static_cast<std::size_t>(type_size(type))
-                                            : 0u})
+               image_arg(image, width, 1, format, type))
   if (target != GL_CONVOLUTION_1D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || width > profile_.limits.max_convolution_width) return set_error(GL_INVALID_VALUE);
@@ -193,11 +184,7 @@ void Context::glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsize
 void Context::glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height,
                                     GLenum format, GLenum type, const void* image) {
   PASSIM_ENTRY(target, internalformat, width, height, format, type,
-               RawArrayArg{image, type,
-                           image && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
-                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
-                                     static_cast<std::size_t>(type_size(type))
-                               : 0u})
+               image_arg(image, width, height, format, type))
   if (target != GL_CONVOLUTION_2D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
@@ -210,13 +197,8 @@ void Context::glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsize
 
 void Context::glSeparableFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,
                                   GLenum type, const void* row, const void* column) {
-  auto count = [&](const void* p, int n) {
-    return p && n > 0 && format_components(format) > 0 && type_size(type) > 0
-               ? image_bytes(n, 1, format, type, pixel_store_.unpack) / static_cast<std::size_t>(type_size(type))
-               : 0u;
-  };
-  PASSIM_ENTRY(target, internalformat, width, height, format, type, RawArrayArg{row, type, count(row, width)},
-               RawArrayArg{column, type, count(column, height)})
+  PASSIM_ENTRY(target, internalformat, width, height, format, type, image_arg(row, width, 1, format, type),
+               image_arg(column, height, 1, format, type))
   if (target != GL_SEPARABLE_2D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||

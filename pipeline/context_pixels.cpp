@@ -205,24 +205,10 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
   }
 }
 
-namespace {
-bool is_color_format(GLenum f) {
-  switch (f) {
-    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_RGB: case GL_RGBA: case GL_BGR: case GL_BGRA:
-    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA:
-      return true;
-    default: return false;
-  }
-}
-}  // namespace
 
 void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(width, height, format, type,
-               RawArrayArg{pixels, type,
-                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
-                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
-                                     static_cast<std::size_t>(type_size(type))
-                               : 0u})
+               image_arg(pixels, width, height, format, type))
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
   if (format == GL_STENCIL_INDEX || format == GL_COLOR_INDEX) {
@@ -230,7 +216,7 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
     warn_once(fmt::format("glDrawPixels with {} is not modelled yet: ignored", enum_name(format)));
     return;
   }
-  if (format != GL_DEPTH_COMPONENT && !is_color_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   if (!raster_.valid || width == 0 || height == 0 || !pixels) return;  // §3.6.4: invalid raster position: nothing
   if (format == GL_DEPTH_COMPONENT) {
@@ -258,7 +244,7 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     warn_once("glReadPixels with GL_STENCIL_INDEX is not modelled yet: nothing is written");
     return;
   }
-  if (format != GL_DEPTH_COMPONENT && !is_color_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   if (width == 0 || height == 0) return;
   Counters& c = counters();

@@ -109,14 +109,7 @@ namespace {
 
 bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
-bool is_texture_format(GLenum format) {
-  switch (format) {
-    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_RGB: case GL_RGBA: case GL_BGR: case GL_BGRA:
-    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA: case GL_DEPTH_COMPONENT:
-      return true;
-    default: return false;
-  }
-}
+bool is_texture_format(GLenum format) { return is_color_pixel_format(format) || format == GL_DEPTH_COMPONENT; }
 
 int log2_floor(int v) {
   int l = 0;
@@ -218,21 +211,14 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
 void Context::glTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLint border, GLenum format,
                            GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, internalformat, width, border, format, type,
-               RawArrayArg{pixels, type, pixels && width > 0 && format_components(format) > 0 && type_size(type) > 0
-                                             ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
-                                                   static_cast<std::size_t>(type_size(type))
-                                             : 0u})
+               image_arg(pixels, width, 1, format, type))
   tex_image(target, 1, level, internalformat, width, 1, border, format, type, pixels);
 }
 
 void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLsizei height,
                            GLint border, GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, internalformat, width, height, border, format, type,
-               RawArrayArg{pixels, type,
-                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
-                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
-                                     static_cast<std::size_t>(type_size(type))
-                               : 0u})
+               image_arg(pixels, width, height, format, type))
   tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
 }
 
@@ -314,21 +300,14 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
 void Context::glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
                               const void* pixels) {
   PASSIM_ENTRY(target, level, xoffset, width, format, type,
-               RawArrayArg{pixels, type, pixels && width > 0 && format_components(format) > 0 && type_size(type) > 0
-                                             ? image_bytes(width, 1, format, type, pixel_store_.unpack) /
-                                                   static_cast<std::size_t>(type_size(type))
-                                             : 0u})
+               image_arg(pixels, width, 1, format, type))
   tex_sub_image(target, 1, level, xoffset, 0, width, 1, format, type, pixels);
 }
 
 void Context::glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
                               GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, xoffset, yoffset, width, height, format, type,
-               RawArrayArg{pixels, type,
-                           pixels && width > 0 && height > 0 && format_components(format) > 0 && type_size(type) > 0
-                               ? image_bytes(width, height, format, type, pixel_store_.unpack) /
-                                     static_cast<std::size_t>(type_size(type))
-                               : 0u})
+               image_arg(pixels, width, height, format, type))
   tex_sub_image(target, 2, level, xoffset, yoffset, width, height, format, type, pixels);
 }
 

@@ -821,10 +821,4 @@ void TraceWriter::output(const std::string& name, const std::string& plane, cons
 
 void TraceWriter::swap() { out_ << "@swap\n"; }
 
-void TraceWriter::comment(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) out_ << "# " << line << "\n";
-}
-
 }  // namespace passim

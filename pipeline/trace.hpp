@@ -80,7 +80,6 @@ class TraceWriter final : public CallSink {
   // Directives that are not GL calls.
   void output(const std::string& name, const std::string& plane, const std::string& buffer);
   void swap();
-  void comment(const std::string& text);
 
  private:
   std::ostream& out_;

@@ -19,6 +19,15 @@ int format_components(GLenum format) {
   }
 }
 
+bool is_color_pixel_format(GLenum format) {
+  switch (format) {
+    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_RGB: case GL_RGBA: case GL_BGR: case GL_BGRA:
+    case GL_LUMINANCE: case GL_LUMINANCE_ALPHA:
+      return true;
+    default: return false;
+  }
+}
+
 bool is_pixel_type(GLenum type) {
   switch (type) {
     case GL_UNSIGNED_BYTE: case GL_BYTE: case GL_UNSIGNED_SHORT: case GL_SHORT: case GL_UNSIGNED_INT: case GL_INT:

@@ -23,6 +23,8 @@ using Rgba = std::array<double, 4>;
 
 // Components of a pixel format (Table 3.5); 0 for a name that is not one.
 int format_components(GLenum format);
+// The colour formats of Table 3.5 (not DEPTH, STENCIL or COLOR_INDEX).
+bool is_color_pixel_format(GLenum format);
 // The non-packed pixel types of Table 3.4 (BITMAP and the packed types are not modelled).
 bool is_pixel_type(GLenum type);
 // The bytes an image of width x height reads, counting from the data pointer (§3.6.4).
