@@ -16,6 +16,7 @@
 #include "pipeline/profile.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
+#include "programs/programs.hpp"
 
 namespace fs = std::filesystem;
 using namespace passim;
@@ -86,6 +87,80 @@ int run_command(const fs::path& trace, const fs::path& out, bool strict, const s
       return kMismatch;
     }
     if (!quiet) std::cout << "  matches " << expect << "\n";
+  }
+  return kOk;
+}
+
+// Writes a program run's images, counters.json and trace.pass into `out`.
+std::vector<fs::path> write_program_outputs(const ProgramRun& run, const fs::path& out, bool tiff) {
+  fs::create_directories(out);
+  std::vector<fs::path> files;
+  std::vector<std::string> names;
+  for (const CapturedImage& img : run.result.images) {
+    files.push_back(write_image(img, out, tiff));
+    names.push_back(files.back().filename().string());
+  }
+  nlohmann::json report = run_report(run.result, "trace.pass", names);
+  const ProgramOptions& o = run.options;
+  report["program"] = {{"name", o.program},
+                       {"scene", run.scene.name},
+                       {"triangles", run.triangles},
+                       {"map_size", run.map_size},
+                       {"filter", o.filter},
+                       {"depths", o.depths},
+                       {"bias_steps", o.bias},
+                       {"levels", count_levels(run.image("attenuation"))}};
+  write_text_file(out / "counters.json", report.dump(2) + "\n");
+  files.push_back(out / "counters.json");
+  write_text_file(out / "trace.pass", run.trace);
+  files.push_back(out / "trace.pass");
+  return files;
+}
+
+struct ProgramCommand {
+  ProgramOptions options;
+  std::string size = "800x600", filter, out = "out";
+  bool list = false, no_jitter = false, tiff = false, quiet = false;
+};
+
+int program_command(ProgramCommand& c) {
+  if (c.list) {
+    for (const ProgramInfo& p : program_list())
+      std::cout << fmt::format("{:<11} {}\n            {}\n", p.name, p.section, p.summary);
+    std::cout << "\nScenes: paper, fig8, edges, or an .obj file (--scene).\n";
+    return kOk;
+  }
+  ProgramOptions& o = c.options;
+  if (std::sscanf(c.size.c_str(), "%dx%d", &o.width, &o.height) != 2) {
+    std::cerr << "passim: --size " << c.size << ": expected WIDTHxHEIGHT, e.g. 800x600\n";
+    return kUsage;
+  }
+  if (!c.filter.empty()) {
+    int a = 0, b = 0;
+    const int got = std::sscanf(c.filter.c_str(), "%dx%d", &a, &b);
+    if (got < 1 || (got == 2 && a != b)) {
+      std::cerr << "passim: --filter " << c.filter << ": expected NxN (square), e.g. 2x2\n";
+      return kUsage;
+    }
+    o.filter = a;
+  }
+  o.jitter = !c.no_jitter;
+  ProgramRun run;
+  std::vector<fs::path> files;
+  try {
+    run = run_program(o);
+    files = write_program_outputs(run, c.out, c.tiff);
+  } catch (const std::exception& e) {
+    std::cerr << "passim: " << e.what() << "\n";
+    return kRunError;
+  }
+  if (!c.quiet) {
+    std::cout << fmt::format("{} on {} ({} triangles), {}-bit colour, {}-bit depth, {}² map -> {}\n",
+                             run.options.program, run.scene.name, run.triangles, o.color_bits, o.depth_bits,
+                             run.map_size, c.out);
+    for (const auto& f : files) std::cout << "  wrote " << f.string() << "\n";
+    print_counters_summary(run_report(run.result, "trace.pass", {}));
+    std::cout << fmt::format("  shadow levels in the attenuation image: {}\n", count_levels(run.image("attenuation")));
   }
   return kOk;
 }
@@ -170,6 +245,30 @@ int main(int argc, char** argv) {
   std::string demo_out = "out";
   demo->add_option("--out,-o", demo_out, "Output directory")->capture_default_str();
 
+  auto* program = app.add_subcommand("program", "Run one of the papers' pass programs (passim program --list)");
+  ProgramCommand pc;
+  program->add_option("name", pc.options.program, "Program: shadow-map, pcf, fast-pcf, mdsm, hw-shadow");
+  program->add_flag("--list", pc.list, "Describe each program with its paper section");
+  program->add_option("--bits", pc.options.color_bits, "Colour width per channel, 4-16")->capture_default_str();
+  program->add_option("--depth-bits", pc.options.depth_bits, "Depth-buffer width")->capture_default_str();
+  program->add_option("--accum-bits", pc.options.accum_bits, "Accumulation width (0: twice the colour width)")
+      ->capture_default_str();
+  program->add_option("--map", pc.options.map_size, "Shadow-map size (power of two; 0: the scene's, 512 or 1024)")
+      ->capture_default_str();
+  program->add_option("--size", pc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
+  program->add_option("--filter", pc.filter, "Footprint NxN: pcf 2x2-4x4, fast-pcf 2x2 or 4x4, mdsm 1x1-3x3");
+  program->add_option("--depths", pc.options.depths, "mdsm: depths per map cell, 1-3")->capture_default_str();
+  program->add_option("--scene", pc.options.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
+  program->add_option("--bias", pc.options.bias, "Depth bias in steps of the depth encoding")->capture_default_str();
+  program->add_option("--profile", pc.options.profile, "Machine profile (passim info)")->capture_default_str();
+  program->add_flag("--linear", pc.options.linear, "hw-shadow: LINEAR (2x2 filtered) compare");
+  program->add_flag("--no-jitter", pc.no_jitter, "pcf: sample the strata's centres instead of jittering");
+  program->add_option("--seed", pc.options.seed, "pcf: jitter seed")->capture_default_str();
+  program->add_flag("--intermediates", pc.options.intermediates, "Also write every intermediate buffer");
+  program->add_option("--out,-o", pc.out, "Output directory")->capture_default_str();
+  program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");
+  program->add_flag("--quiet,-q", pc.quiet, "Print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -182,6 +281,13 @@ int main(int argc, char** argv) {
   }
   if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
   if (*info) return info_command(calls);
+  if (*program) {
+    if (!pc.list && program->count("name") == 0) {
+      std::cerr << "passim program: name a program (passim program --list)\n";
+      return kUsage;
+    }
+    return program_command(pc);
+  }
   if (*demo || app.get_subcommands().empty()) {
     if (app.get_subcommands().empty()) {
       std::cout << app.help() << "\n";

@@ -181,6 +181,8 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
     return set_error(GL_INVALID_VALUE);
   if (!is_texture_format(format)) return set_error(GL_INVALID_ENUM);
   if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
+  if (static_cast<std::int64_t>(width) * (dims == 2 ? height : 1) > profile_.limits.max_texture_texels)
+    return set_error(GL_OUT_OF_MEMORY);
   if ((format == GL_DEPTH_COMPONENT) != (fmt_info->base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
   TextureObject& tex = *texture_for(target);
   tex.target = target;

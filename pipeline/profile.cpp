@@ -13,7 +13,7 @@ const std::vector<MachineProfile>& machine_profiles() {
       m.limits.max_color_table_width = 65536;
       m.limits.max_histogram_width = 65536;
       m.limits.max_pixel_map_table = 65536;
-      m.limits.max_texture_size = 4096;
+      m.limits.max_texture_size = 65536;  // a 16-bit depth ramp is a 65536-texel 1D texture
       m.sources = "assumed (a machine without the period's limits)";
       p.push_back(m);
     }
@@ -26,7 +26,7 @@ const std::vector<MachineProfile>& machine_profiles() {
       m.limits.max_color_table_width = 4096;  // assumed: one entry per 12-bit code
       m.limits.max_histogram_width = 4096;    // assumed
       m.limits.max_convolution_width = m.limits.max_convolution_height = 7;  // assumed
-      m.limits.max_texture_size = 2048;       // assumed
+      m.limits.max_texture_size = 4096;  // assumed (a 12-bit depth ramp needs 4096 texels)
       m.sources =
           "12-bit colour and 96-bit accumulation: SGI VPro product text (gl12-semantics §9); limits assumed";
       p.push_back(m);

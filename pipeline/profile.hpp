@@ -1,6 +1,7 @@
 // Machine profiles: plane widths, limits and (for the cost model) rates of a
 // modelled workstation. Every figure says where it comes from in docs/cost-model.md.
 #pragma once
+#include <cstdint>
 #include <array>
 #include <string>
 #include <vector>
@@ -11,6 +12,9 @@ struct MachineLimits {
   int max_framebuffer_size = 4096;  // largest window width or height
   int max_viewport_size = 4096;
   int max_texture_size = 2048;
+  // Texels one image may hold (above: GL_OUT_OF_MEMORY, §2.5), so a huge size in a trace
+  // is an error, not an allocation failure.
+  std::int64_t max_texture_texels = std::int64_t{4096} * 4096;
   int max_lights = 8;
   int max_clip_planes = 6;
   int max_modelview_stack = 32;

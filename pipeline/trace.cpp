@@ -55,32 +55,49 @@ std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_cod
   return fmt::format("{:016x}", h);
 }
 
-CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane, GLenum buffer) {
+CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane, GLenum buffer,
+                            CaptureRegion region) {
   const Framebuffer& fb = ctx.framebuffer();
+  if (region.width == 0) region = {0, 0, fb.width(), fb.height()};
   CapturedImage img;
   img.name = name;
   img.plane = plane;
-  img.width = fb.width();
-  img.height = fb.height();
-  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
-  if (plane == "color") {
+  img.width = region.width;
+  img.height = region.height;
+  // Copies `channels` codes per pixel of the region, starting at component `first` of
+  // a plane stored with `stride` codes per pixel.
+  auto copy_region = [&](const auto& codes, int stride, int first, int channels) {
+    img.channels = channels;
+    img.codes.assign(static_cast<std::size_t>(region.width) * static_cast<std::size_t>(region.height) *
+                         static_cast<std::size_t>(channels), 0);
+    if (codes.empty()) return;
+    std::size_t k = 0;
+    for (int y = region.y; y < region.y + region.height; ++y)
+      for (int x = region.x; x < region.x + region.width; ++x)
+        for (int c = 0; c < channels; ++c)
+          img.codes[k++] = codes[fb.pixel_index(x, y) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(first + c)];
+  };
+  if (plane == "color" || plane == "rgb" || plane == "alpha") {
     const ColorPlane* cp = ctx.color_buffer(buffer);
     img.buffer = enum_name(buffer, EnumRole::Buffer);
-    img.bits = fb.config.color_bits;
-    img.channels = 4;
-    img.codes.assign(cp->rgba.begin(), cp->rgba.end());
+    if (plane == "color") {
+      img.bits = fb.config.color_bits;
+      copy_region(cp->rgba, 4, 0, 4);
+    } else if (plane == "rgb") {
+      img.bits = {fb.config.color_bits[0], fb.config.color_bits[1], fb.config.color_bits[2], 0};
+      copy_region(cp->rgba, 4, 0, 3);
+    } else {
+      img.bits = {fb.config.color_bits[3], 0, 0, 0};
+      copy_region(cp->rgba, 4, 3, 1);
+    }
     img.hash = fnv1a_hex(img.codes, 2);
   } else if (plane == "depth") {
     img.bits = {fb.config.depth_bits, 0, 0, 0};
-    img.channels = 1;
-    img.codes.assign(fb.depth.begin(), fb.depth.end());
-    if (img.codes.empty()) img.codes.assign(n, 0);
+    copy_region(fb.depth, 1, 0, 1);
     img.hash = fnv1a_hex(img.codes, 4);
   } else {
     img.bits = {fb.config.stencil_bits, 0, 0, 0};
-    img.channels = 1;
-    img.codes.assign(fb.stencil.begin(), fb.stencil.end());
-    if (img.codes.empty()) img.codes.assign(n, 0);
+    copy_region(fb.stencil, 1, 0, 1);
     img.hash = fnv1a_hex(img.codes, 1);
   }
   return img;
@@ -472,8 +489,27 @@ class Replayer {
     }
   }
 
-  void output(const std::vector<std::string>& w) {
-    if (w.empty() || w.size() > 3) fail("@output takes NAME [color|depth|stencil] [buffer]");
+  // @output NAME [PLANE] [BUFFER] [X Y W H]
+  void output(std::vector<std::string> w) {
+    CaptureRegion region;
+    if (w.size() >= 5) {
+      int v[4];
+      for (int k = 0; k < 4; ++k) {
+        const std::string& t = w[w.size() - 4 + static_cast<std::size_t>(k)];
+        char* end = nullptr;
+        const long x = std::strtol(t.c_str(), &end, 10);
+        if (t.empty() || *end != '\0' || x < 0 || x > (1L << 20)) fail(fmt::format("@output region value '{}' is not a size", t));
+        v[k] = static_cast<int>(x);
+      }
+      region = {v[0], v[1], v[2], v[3]};
+      w.resize(w.size() - 4);
+      const FramebufferConfig& c = result_.context->config();
+      if (region.width == 0 || region.height == 0 || region.x + region.width > c.width ||
+          region.y + region.height > c.height)
+        fail(fmt::format("@output region {} {} {} {} is empty or leaves the {}x{} framebuffer", region.x, region.y,
+                         region.width, region.height, c.width, c.height));
+    }
+    if (w.empty() || w.size() > 3) fail("@output takes NAME [color|rgb|alpha|depth|stencil] [buffer] [x y width height]");
     const std::string& name = w[0];
     for (char ch : name)
       if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.')
@@ -481,8 +517,8 @@ class Replayer {
     for (const CapturedImage& img : result_.images)
       if (img.name == name) fail(fmt::format("@output '{}' is already used in this trace", name));
     std::string plane = w.size() >= 2 ? w[1] : "color";
-    if (plane != "color" && plane != "depth" && plane != "stencil")
-      fail(fmt::format("@output plane '{}' is not color, depth or stencil", plane));
+    if (plane != "color" && plane != "rgb" && plane != "alpha" && plane != "depth" && plane != "stencil")
+      fail(fmt::format("@output plane '{}' is not color, rgb, alpha, depth or stencil", plane));
     Context& ctx = *result_.context;
     GLint read_buffer = 0;
     ctx.glGetIntegerv(GL_READ_BUFFER, &read_buffer);
@@ -492,13 +528,15 @@ class Replayer {
       if (!v) fail(fmt::format("unknown buffer '{}'", w[2]));
       buffer = *v;
     }
-    if (plane == "color" && !ctx.color_buffer(buffer))
+    const bool color = plane == "color" || plane == "rgb" || plane == "alpha";
+    if (color && !ctx.color_buffer(buffer))
       fail(fmt::format("@output {}: the framebuffer has no buffer {}", name, w.size() == 3 ? w[2] : "to read"));
+    if (plane == "alpha" && ctx.config().color_bits[3] == 0) fail("@output alpha: the framebuffer has no alpha plane");
     if (plane == "depth" && ctx.config().depth_bits == 0) fail("@output depth: the framebuffer has no depth plane");
     if (plane == "stencil" && ctx.config().stencil_bits == 0)
       fail("@output stencil: the framebuffer has no stencil plane");
-    result_.images.push_back(capture_plane(ctx, name, plane, buffer));
-    if (options_.record) options_.record->output(name, plane, enum_name(buffer, EnumRole::Buffer));
+    result_.images.push_back(capture_plane(ctx, name, plane, buffer, region));
+    if (options_.record) options_.record->output(name, plane, color ? enum_name(buffer, EnumRole::Buffer) : "", region);
   }
 
   void mesh(const std::string& file) {
@@ -813,9 +851,11 @@ void TraceWriter::write_header(const TraceSettings& settings) {
 
 void TraceWriter::on_call(const Call& call) { out_ << format_call(call) << "\n"; }
 
-void TraceWriter::output(const std::string& name, const std::string& plane, const std::string& buffer) {
+void TraceWriter::output(const std::string& name, const std::string& plane, const std::string& buffer,
+                         CaptureRegion region) {
   out_ << "@output " << name << " " << plane;
-  if (plane == "color") out_ << " " << buffer;
+  if (plane == "color" || plane == "rgb" || plane == "alpha") out_ << " " << buffer;
+  if (region.width != 0) out_ << " " << region.x << " " << region.y << " " << region.width << " " << region.height;
   out_ << "\n";
 }
 

@@ -37,7 +37,7 @@ struct TraceSettings {
 // An image a trace asks for (@output) captured at that point of the replay.
 struct CapturedImage {
   std::string name;
-  std::string plane;  // "color", "depth" or "stencil"
+  std::string plane;  // "color", "rgb", "alpha", "depth" or "stencil"
   std::string buffer;  // colour buffer name ("GL_BACK") for colour planes
   int width = 0, height = 0;
   std::array<int, 4> bits{};  // colour widths, or {depth_bits,0,0,0} / {stencil_bits,...}
@@ -66,9 +66,16 @@ ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions
 ReplayResult replay_trace_text(const std::string& text, const std::string& name,
                                const std::filesystem::path& base_dir, const ReplayOptions& options = {});
 
-// Captures a plane of the context's framebuffer as an @output does.
+// A window rectangle of a capture; width 0 means the whole framebuffer.
+struct CaptureRegion {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// Captures a plane ("color", "rgb" / "alpha" = the colour buffer without / only its alpha, "depth",
+// "stencil") of the context's framebuffer, or a rectangle of it, as an @output does.
+// The region must lie inside the framebuffer.
 CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane,
-                            GLenum buffer);
+                            GLenum buffer, CaptureRegion region = {});
 std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_code);
 
 // Writes a trace: header, then one canonical line per call.
@@ -78,7 +85,8 @@ class TraceWriter final : public CallSink {
   void write_header(const TraceSettings& settings);
   void on_call(const Call& call) override;
   // Directives that are not GL calls.
-  void output(const std::string& name, const std::string& plane, const std::string& buffer);
+  void output(const std::string& name, const std::string& plane, const std::string& buffer,
+              CaptureRegion region = {});
   void swap();
 
  private:

@@ -1,0 +1,75 @@
+// The seeds' shadow algorithms as pass programs written against Context
+// (docs/programs.md). Each run records its calls as a .pass trace that replays to the
+// same bits and counters.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pipeline/trace.hpp"
+#include "programs/scene.hpp"
+
+namespace passim {
+
+// A setting the program cannot run with (unknown name, a width or filter beyond the
+// machine profile's limits): the message names the setting and the limit.
+struct ProgramError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct ProgramOptions {
+  std::string program = "shadow-map";  // shadow-map, pcf, fast-pcf, mdsm, hw-shadow
+  std::string scene = "paper";         // paper, fig8, edges or FILE.obj
+  std::string profile = "ideal";
+  int color_bits = 8;    // every colour channel
+  int depth_bits = 24;
+  int accum_bits = 0;    // 0: the default for the colour width (semantics A21)
+  int map_size = 0;      // 0: the scene's default
+  int width = 800, height = 600;
+  int filter = 0;        // 0: the program's default; N of an NxN footprint (pcf 2-4, fast-pcf 2 or 4, mdsm 1-3: k = N²)
+  int depths = 1;        // mdsm: n depths per map cell (1-3)
+  double bias = 1.0;     // subtracted from the receiver's depth, in steps of the depth encoding
+  bool linear = false;   // hw-shadow: LINEAR (2x2 filtered compare) instead of NEAREST
+  bool jitter = true;    // pcf: jitter each stratum's sample (else the strata's centres)
+  std::uint32_t seed = 1;
+  bool intermediates = false;  // also capture every intermediate buffer
+};
+
+struct ProgramInfo {
+  std::string name;
+  std::string section;  // the paper's section
+  std::string summary;
+};
+const std::vector<ProgramInfo>& program_list();
+
+// Where the shadow map's samples were taken, for the "same samples" references: the
+// offset of each map channel's sample from its texel's lower-left corner, in texels.
+struct MapSample {
+  int map = 0, channel = 0;
+  double dx = 0.5, dy = 0.5;
+};
+
+struct ProgramRun {
+  ProgramOptions options;
+  Scene scene;
+  ReplayResult result;                 // settings, context and images (final, attenuation, shadowmap...)
+  std::string trace;                   // the recorded .pass text
+  std::vector<MapSample> samples;      // the shadow map samples (pcf, fast-pcf, mdsm, shadow-map)
+  int map_size = 0;
+  int triangles = 0;
+  double bias_depth = 0.0;  // the bias in the ramp's [0, 1] depth units (or window depth for hw-shadow)
+
+  const CapturedImage& image(const std::string& name) const;
+};
+
+// Runs a program; throws ProgramError for settings it cannot run with and
+// std::runtime_error for a scene file that cannot be read.
+ProgramRun run_program(const ProgramOptions& options);
+
+// The number of distinct values in a single-channel image, counting values one code
+// apart as one level (the paper's 63 and 64).
+int count_levels(const CapturedImage& image);
+
+}  // namespace passim
