@@ -63,7 +63,7 @@ const TextureObject* Context::bound_texture(GLenum target) const {
 }
 
 void Context::glGenTextures(GLsizei n, GLuint* textures) {
-  PASSIM_ENTRY(n)
+  PASSIM_ENTRY(n, textures)
   if (n < 0) return set_error(GL_INVALID_VALUE);
   GLuint next = 1;
   for (GLsizei k = 0; k < n; ++k) {

@@ -1,0 +1,144 @@
+// The papers' programs, measured from their images and counters (issue "programs").
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "pipeline/report.hpp"
+#include "programs/programs.hpp"
+
+namespace passim {
+namespace {
+
+ProgramRun run(std::string program, int filter, int bits, std::string scene = "edges", int depths = 1) {
+  ProgramOptions o;
+  o.program = std::move(program);
+  o.filter = filter;
+  o.color_bits = bits;
+  o.scene = std::move(scene);
+  o.depths = depths;
+  return run_program(o);
+}
+
+int passes_labelled(const ProgramRun& r, const std::string& prefix) {
+  int n = 0;
+  for (const Pass& p : r.result.context->passes())
+    if (p.label.rfind(prefix, 0) == 0) ++n;
+  return n;
+}
+
+// Levels on the edges scene (the issue's acceptance): values one code apart are one level.
+struct LevelCase {
+  const char* program;
+  int filter, depths, levels;
+};
+
+class Levels : public ::testing::TestWithParam<std::tuple<LevelCase, int>> {};
+
+TEST_P(Levels, OnTheEdgesScene) {
+  const auto [c, bits] = GetParam();
+  const ProgramRun r = run(c.program, c.filter, bits, "edges", c.depths);
+  EXPECT_EQ(count_levels(r.image("attenuation")), c.levels)
+      << c.program << " " << c.filter << "x" << c.filter << " n=" << c.depths << " at " << bits << " bits";
+}
+
+// Expected counts: 1 + samples (shadow map 1, PCF N² = 4, 16), fast PCF 2x2 = 4 samples;
+// fast PCF "4x4": four phases of 0..4 each summed = 0..16 (17, not the paper's 4·5 = 20,
+// docs/programs.md); MDSM PCF(k, n): n·k + 1 (the MDSM paper's Table 1).
+INSTANTIATE_TEST_SUITE_P(
+    Programs, Levels,
+    ::testing::Combine(::testing::Values(LevelCase{"shadow-map", 0, 1, 2}, LevelCase{"pcf", 2, 1, 5},
+                                         LevelCase{"fast-pcf", 2, 1, 5}, LevelCase{"pcf", 4, 1, 17},
+                                         LevelCase{"fast-pcf", 4, 1, 17}, LevelCase{"mdsm", 2, 1, 5},
+                                         LevelCase{"mdsm", 2, 2, 9}, LevelCase{"mdsm", 2, 3, 13},
+                                         LevelCase{"mdsm", 3, 2, 19}, LevelCase{"hw-shadow", 0, 1, 2}),
+                       ::testing::Values(8, 12)));
+
+TEST(Programs, PcfCountsWithThePapersConstantsAt8Bits) {
+  // Figure 4 at 8 bits: each shadowed channel adds 64 (63 for one of them) and four sum
+  // to 255, so the attenuation codes are sums of k of {64, 64, 64, 63}.
+  const ProgramRun r = run("pcf", 2, 8);
+  std::set<std::uint32_t> seen(r.image("attenuation").codes.begin(), r.image("attenuation").codes.end());
+  const std::set<std::uint32_t> allowed = {0, 63, 64, 127, 128, 191, 192, 255};
+  for (std::uint32_t v : seen) EXPECT_TRUE(allowed.count(v)) << v;
+  EXPECT_TRUE(seen.count(255) && seen.count(0));
+}
+
+TEST(Programs, PcfCountsAt12Bits) {
+  // The same derived for 4095: 1024 + 1024 + 1024 + 1023.
+  const ProgramRun r = run("pcf", 2, 12);
+  std::set<std::uint32_t> seen(r.image("attenuation").codes.begin(), r.image("attenuation").codes.end());
+  const std::set<std::uint32_t> allowed = {0, 1023, 1024, 2047, 2048, 3071, 3072, 4095};
+  for (std::uint32_t v : seen) EXPECT_TRUE(allowed.count(v)) << v;
+}
+
+TEST(Programs, PassCountsMatchThePaper) {
+  const ProgramRun pcf2 = run("pcf", 2, 8);
+  EXPECT_EQ(passes_labelled(pcf2, "shadow map"), 4);  // §3: four jittered passes
+  const ProgramRun pcf4 = run("pcf", 4, 8);
+  EXPECT_EQ(passes_labelled(pcf4, "shadow map"), 16);  // §3: "16 rendering passes"
+  EXPECT_EQ(passes_labelled(pcf4, "camera depth") + passes_labelled(pcf4, "shadow test"), 8);  // "another eight"
+  EXPECT_LE(passes_labelled(pcf4, "count"), 4);  // "up to four frame buffer copies"
+  Counters total = pcf4.result.context->total_counters();
+  EXPECT_EQ(total.accum_load_pixels + total.accum_accum_pixels, 4u * 800u * 600u);  // one LOAD, three ACCUM
+  const ProgramRun fast2 = run("fast-pcf", 2, 8);
+  EXPECT_EQ(passes_labelled(fast2, "shadow map"), 1);  // §4: one rendering pass
+}
+
+TEST(Programs, TraceReplaysToTheSameBitsAndCounters) {
+  for (const char* name : {"fast-pcf", "mdsm"}) {
+    const ProgramRun r = run(name, 2, 12, "edges", 2);
+    ReplayResult replay = replay_trace_text(r.trace, "trace.pass", ".");
+    ASSERT_EQ(replay.images.size(), r.result.images.size());
+    for (std::size_t k = 0; k < replay.images.size(); ++k) {
+      EXPECT_EQ(replay.images[k].name, r.result.images[k].name);
+      EXPECT_EQ(replay.images[k].hash, r.result.images[k].hash) << name << " " << replay.images[k].name;
+    }
+    const nlohmann::json a = run_report(r.result, "trace.pass", {}), b = run_report(replay, "trace.pass", {});
+    EXPECT_EQ(a["passes"], b["passes"]) << name;
+    EXPECT_EQ(a["total"], b["total"]) << name;
+  }
+}
+
+TEST(Programs, BadSettingsNameTheLimit) {
+  auto message = [](ProgramOptions o) {
+    try {
+      run_program(o);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  ProgramOptions o;
+  o.scene = "edges";
+  o.program = "shadow-mapp";
+  EXPECT_NE(message(o).find("unknown program"), std::string::npos);
+  o.program = "pcf";
+  o.profile = "o2";
+  o.color_bits = 12;  // the ramp needs 4096 texels; the O2 profile allows 1024
+  EXPECT_NE(message(o).find("MAX_TEXTURE_SIZE"), std::string::npos) << message(o);
+  o.profile = "ideal";
+  o.filter = 5;
+  EXPECT_NE(message(o).find("2x2, 3x3 or 4x4"), std::string::npos);
+  o.filter = 2;
+  o.map_size = 500;
+  EXPECT_NE(message(o).find("power of two"), std::string::npos);
+  o.map_size = 0;
+  o.scene = "/nonexistent/file.obj";
+  EXPECT_NE(message(o).find("/nonexistent/file.obj"), std::string::npos);
+  o.scene = "moon";
+  EXPECT_NE(message(o).find("unknown scene"), std::string::npos);
+}
+
+TEST(Scenes, PaperSceneHasAboutSevenThousandTriangles) {
+  const Scene s = make_scene("paper");
+  // Counted by hand from the builders: ground 40·40·2 = 3200, spheres 32·20·2 − 2·32 =
+  // 1216 and 24·16·2 − 2·24 = 720, torus 36·18·2 = 1296, 3 boxes · 12 = 36, 4 poles ·
+  // 16 · 3 = 192, fence 10 boxes · 12 = 120.
+  EXPECT_EQ(s.triangles(), 3200 + 1216 + 720 + 1296 + 36 + 192 + 120);
+  EXPECT_EQ(make_scene("fig8").default_map_size, 1024);
+}
+
+}  // namespace
+}  // namespace passim
