@@ -1,11 +1,13 @@
 // passim: the command line (docs/cli.md).
 //   passim run FILE.pass --out DIR     replay a trace: images + counters.json
-//   passim demo [--out DIR]            the main job on built-in defaults
+//   passim demo [--out DIR]            the main job: Figure 7's variants at 8 and 12 bits
+//   passim program NAME [...]          one of the papers' pass programs (--list)
 //   passim info                        machine profiles, widths, limits, calls
 // Exit status: 0 ok, 1 trace or run error, 2 usage, 3 output differs from --expect.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "pipeline/profile.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
+#include "programs/figure.hpp"
 #include "programs/programs.hpp"
 
 namespace fs = std::filesystem;
@@ -193,28 +196,72 @@ int info_command(bool calls) {
   return kOk;
 }
 
-int demo_command(const fs::path& out) {
-  // The main job until the papers' programs land: replay the example traces that ship
-  // with passim and say where their images and counters went.
-  const fs::path traces = fs::path(PASSIM_SOURCE_DIR) / "traces";
-  std::vector<fs::path> files;
-  if (fs::is_directory(traces))
-    for (const auto& e : fs::directory_iterator(traces))
-      if (e.path().extension() == ".pass") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  if (files.empty()) {
-    std::cerr << "passim: no example traces found in " << traces.string() << "\n";
+// The main job: Figure 7's four variants (shadow map, PCF 2x2, fast PCF 2x2, fast PCF
+// 4x4) at 8 and 12 bits on the paper scene; a side-by-side figure and a table.
+int demo_command(const fs::path& out, const std::string& scene) {
+  struct Variant {
+    const char* label;
+    const char* program;
+    int filter;
+  };
+  const Variant variants[] = {{"shadow map", "shadow-map", 0},
+                              {"PCF 2x2", "pcf", 2},
+                              {"fast PCF 2x2", "fast-pcf", 2},
+                              {"fast PCF 4x4", "fast-pcf", 4}};
+  std::vector<ProgramRun> runs;
+  std::vector<std::vector<FigureColumn>> rows;
+  std::string table =
+      "| variant | bits | passes | shadow-map passes | levels | fragments | pixels copied | accumulation ops | "
+      "time (s) |\n|---|---|---|---|---|---|---|---|---|\n";
+  try {
+    fs::create_directories(out);
+    for (int bits : {8, 12}) {
+      rows.emplace_back();
+      for (const Variant& v : variants) {
+        ProgramOptions o;
+        o.program = v.program;
+        o.filter = v.filter;
+        o.color_bits = bits;
+        o.scene = scene;
+        const auto t0 = std::chrono::steady_clock::now();
+        runs.push_back(run_program(o));
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const ProgramRun& r = runs.back();
+        const fs::path dir = out / fmt::format("{}-{}x{}-{}bit", v.program, std::max(1, r.options.filter),
+                                               std::max(1, r.options.filter), bits);
+        write_program_outputs(r, dir, false);
+        int passes = 0, map_passes = 0;
+        for (const Pass& p : r.result.context->passes()) {
+          if (p.label == "(unmarked)") continue;
+          ++passes;
+          if (p.label.rfind("shadow map", 0) == 0) ++map_passes;
+        }
+        const Counters c = r.result.context->total_counters();
+        const int levels = count_levels(r.image("attenuation"));
+        table += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} |\n", v.label, bits, passes, map_passes,
+                             levels, c.fragments_generated, c.pixels_drawn + c.pixels_read,
+                             c.accum_load_pixels + c.accum_accum_pixels + c.accum_return_pixels, seconds);
+        std::cout << fmt::format("  {:<13} {:>2} bits: {:>2} passes, {:>2} shadow levels  -> {}\n", v.label, bits,
+                                 passes, levels, dir.string());
+      }
+    }
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      rows[k / 4].push_back({variants[k % 4].label, &runs[k].image("final")});
+    // The inset: the shadow edge of the large sphere on the ground, as Figure 7's red box.
+    write_figure(out / "figure7.png", rows, InsetRegion{250, 210, 100, 75});
+    const std::string md = fmt::format(
+        "# Figure 7 variants on the {} scene ({} triangles, 800x600, 512² map)\n\n"
+        "Rows of figure7.png: 8 bits (full image, magnified inset), then 12 bits.\n"
+        "'levels' counts distinct values of the attenuation image, values one code apart as one level.\n\n{}",
+        runs.front().scene.name, runs.front().triangles, table);
+    write_text_file(out / "figure7.md", md);
+    std::cout << "\n" << md << "\nWrote " << (out / "figure7.png").string() << " and "
+              << (out / "figure7.md").string() << "; each run's images, counters.json and trace.pass are beside them.\n";
+  } catch (const std::exception& e) {
+    std::cerr << "passim: " << e.what() << "\n";
     return kRunError;
   }
-  int status = kOk;
-  for (const fs::path& f : files) {
-    fs::path expect = f;
-    expect.replace_extension(".expected.json");
-    int s = run_command(f, out / f.stem(), false, fs::exists(expect) ? expect.string() : "", "", false, false, false);
-    if (s != kOk) status = s;
-  }
-  std::cout << fmt::format("\nImages and counters.json of {} traces are in {}/\n", files.size(), out.string());
-  return status;
+  return kOk;
 }
 
 }  // namespace
@@ -242,8 +289,9 @@ int main(int argc, char** argv) {
   info->add_flag("--calls", calls, "List the GL calls traces may use, with their signatures");
 
   auto* demo = app.add_subcommand("demo", "The main job on built-in defaults (what the quick start runs)");
-  std::string demo_out = "out";
+  std::string demo_out = "out", demo_scene = "paper";
   demo->add_option("--out,-o", demo_out, "Output directory")->capture_default_str();
+  demo->add_option("--scene", demo_scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
 
   auto* program = app.add_subcommand("program", "Run one of the papers' pass programs (passim program --list)");
   ProgramCommand pc;
@@ -259,7 +307,7 @@ int main(int argc, char** argv) {
   program->add_option("--filter", pc.filter, "Footprint NxN: pcf 2x2-4x4, fast-pcf 2x2 or 4x4, mdsm 1x1-3x3");
   program->add_option("--depths", pc.options.depths, "mdsm: depths per map cell, 1-3")->capture_default_str();
   program->add_option("--scene", pc.options.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
-  program->add_option("--bias", pc.options.bias, "Depth bias in steps of the depth encoding")->capture_default_str();
+  program->add_option("--bias", pc.options.bias, "Depth bias in steps of the depth encoding (default: one 8-bit step, 2^(bits-8))");
   program->add_option("--profile", pc.options.profile, "Machine profile (passim info)")->capture_default_str();
   program->add_flag("--linear", pc.options.linear, "hw-shadow: LINEAR (2x2 filtered) compare");
   program->add_flag("--no-jitter", pc.no_jitter, "pcf: sample the strata's centres instead of jittering");
@@ -293,7 +341,7 @@ int main(int argc, char** argv) {
       std::cout << app.help() << "\n";
       return kOk;
     }
-    return demo_command(demo_out);
+    return demo_command(demo_out, demo_scene);
   }
   return kOk;
 }

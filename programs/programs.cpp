@@ -622,7 +622,9 @@ void validate(ProgramOptions& o, const MachineProfile& profile, int map) {
                                    l.max_texture_size, profile.name));
   if (map > l.max_framebuffer_size)
     throw ProgramError(fmt::format("--map {}: larger than the framebuffer can be ({})", map, l.max_framebuffer_size));
-  if (!std::isfinite(o.bias)) throw ProgramError("--bias must be a finite number");
+  if (std::isnan(o.bias))
+    o.bias = o.program == "hw-shadow" ? std::ldexp(1.0, o.depth_bits - 12) : std::ldexp(1.0, o.color_bits - 8);
+  if (!std::isfinite(o.bias)) throw ProgramError("--bias must be a finite number of steps");
   const std::string& p = o.program;
   const bool ramp = p != "hw-shadow";
   if (ramp && (1 << o.color_bits) > l.max_texture_size)

@@ -3,6 +3,7 @@
 // same bits and counters.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -30,7 +31,10 @@ struct ProgramOptions {
   int width = 800, height = 600;
   int filter = 0;        // 0: the program's default; N of an NxN footprint (pcf 2-4, fast-pcf 2 or 4, mdsm 1-3: k = N²)
   int depths = 1;        // mdsm: n depths per map cell (1-3)
-  double bias = 1.0;     // subtracted from the receiver's depth, in steps of the depth encoding
+  // Subtracted from the receiver's depth, in steps of the depth encoding (the colour
+  // width's ramp; hw-shadow: the depth width). NaN: the paper's one 8-bit step kept as
+  // the same depth at every width, 2^(bits−8) steps (hw-shadow: 2^(depth bits−12)).
+  double bias = std::numeric_limits<double>::quiet_NaN();
   bool linear = false;   // hw-shadow: LINEAR (2x2 filtered compare) instead of NEAREST
   bool jitter = true;    // pcf: jitter each stratum's sample (else the strata's centres)
   std::uint32_t seed = 1;
