@@ -200,7 +200,7 @@ Scene edges_scene() {
   s.name = "edges";
   s.description = "A 13-point star plate 1.5 above a flat ground, lit from straight above: its edges cross "
                   "the map's grid at every angle and phase, so every count of shadowed samples occurs";
-  s.meshes.push_back(ground(8.0, 4, {0.8f, 0.8f, 0.8f}));
+  s.meshes.push_back(ground(4.0, 4, {0.8f, 0.8f, 0.8f}));
   s.meshes.push_back(star_plate(1.5, 2.6, 1.1, 13, 0.1234, {0.9f, 0.5f, 0.3f}));
   s.camera.eye = {0.0, 9.0, 3.0};
   s.camera.center = {0.0, 0.0, 0.0};

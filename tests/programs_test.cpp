@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <map>
+#include <iostream>
 #include <set>
 
 #include "pipeline/report.hpp"
 #include "programs/programs.hpp"
+#include "programs/reference.hpp"
 
 namespace passim {
 namespace {
@@ -130,6 +132,36 @@ TEST(Programs, BadSettingsNameTheLimit) {
   o.scene = "moon";
   EXPECT_NE(message(o).find("unknown scene"), std::string::npos);
 }
+
+// The transcription check: each program's count per pixel against the double-precision
+// evaluation of the same samples (same sample positions, encoding, bias, vertex snapping).
+struct TranscriptionCase {
+  const char* program;
+  int filter, depths;
+};
+class Transcription : public ::testing::TestWithParam<TranscriptionCase> {};
+
+TEST_P(Transcription, AgreesWithTheSameSamplesReferenceAt12Bits) {
+  const TranscriptionCase c = GetParam();
+  const ProgramRun r = run(c.program, c.filter, 12, "edges", c.depths);
+  const SameSamples s = same_samples(r);
+  const double agreement = static_cast<double>(s.agree) / s.compared;
+  EXPECT_GE(agreement, 0.999) << c.program << ": " << s.agree << " of " << s.compared << " pixels agree";
+  EXPECT_EQ(s.disagree_unexplained, 0)
+      << c.program << ": " << s.disagree_unexplained << " disagreeing pixels are not at a quantisation step";
+  // The message a reader sees when it passes too: how many disagreements were ties.
+  RecordProperty("ties", s.disagree_at_ties);
+  std::cout << "  " << c.program << " " << c.filter << "x" << c.filter << ": " << s.agree << "/" << s.compared
+            << " agree; " << s.disagree_at_ties
+            << " differ, each a tie at a quantisation step (the pixel or a sample moved by 0.1 gives the "
+               "program's count)\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Programs, Transcription,
+                         ::testing::Values(TranscriptionCase{"shadow-map", 0, 1}, TranscriptionCase{"pcf", 2, 1},
+                                           TranscriptionCase{"pcf", 3, 1}, TranscriptionCase{"pcf", 4, 1},
+                                           TranscriptionCase{"fast-pcf", 2, 1}, TranscriptionCase{"fast-pcf", 4, 1},
+                                           TranscriptionCase{"mdsm", 2, 2}, TranscriptionCase{"hw-shadow", 0, 1}));
 
 TEST(Scenes, PaperSceneHasAboutSevenThousandTriangles) {
   const Scene s = make_scene("paper");

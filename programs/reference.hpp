@@ -1,0 +1,67 @@
+// Double-precision software references (no pipeline): a ray caster over the scene,
+// the exact shadow test, the "same samples" evaluation of a hardware program's
+// decisions, and the papers' filters (Reeves PCF, the tutorial's shader PCF, MDSM).
+#pragma once
+#include <glm/glm.hpp>
+#include <optional>
+#include <vector>
+
+#include "programs/programs.hpp"
+#include "programs/scene.hpp"
+
+namespace passim {
+
+class RayCaster {
+ public:
+  explicit RayCaster(const Scene& scene);
+  struct Hit {
+    double t = 0.0;
+    int mesh = -1;
+    glm::dvec3 normal{0.0};  // geometric, unit length, as wound (counter-clockwise front)
+  };
+  // The nearest hit with t in (t_min, t_max) along origin + t·dir.
+  std::optional<Hit> first_hit(const glm::dvec3& origin, const glm::dvec3& dir, double t_min = 0.0,
+                               double t_max = 1e300) const;
+
+ private:
+  struct Triangle {
+    glm::dvec3 a, e1, e2, normal;
+    int mesh;
+  };
+  struct Node {
+    glm::dvec3 lo, hi;
+    int left = -1, right = -1;  // children, or -1 for a leaf
+    int first = 0, count = 0;   // the leaf's triangles
+  };
+  int build(int first, int count);
+  std::vector<Triangle> triangles_;
+  std::vector<Node> nodes_;
+};
+
+// Per camera pixel (row 0 at the bottom): the surface a pixel centre sees, from the
+// scene's camera at width x height.
+struct PixelSurface {
+  bool hit = false;
+  glm::dvec3 position{0.0}, normal{0.0};
+  int mesh = -1;
+};
+std::vector<PixelSurface> camera_surfaces(const Scene& scene, const RayCaster& caster, int width, int height);
+
+// The exact shadow test: is the segment from the surface point to the light blocked?
+bool in_shadow_exact(const RayCaster& caster, const Scene& scene, const PixelSurface& s);
+
+// The "same samples" reference of a hardware program run: for each pixel the number of
+// shadowed samples the program should have counted, computed in double from the
+// program's own sample positions, depth encoding and bias, and whether that pixel lies
+// on a quantisation step (a tie: a sample or the pixel moved by a hair changes a code
+// or a texel).
+struct SameSamples {
+  int samples = 1;                // samples per pixel (n·k for mdsm)
+  std::vector<int> expected;      // per pixel; -1 where the pixel sees no surface
+  std::vector<int> measured;      // per pixel, from the program's attenuation image
+  std::vector<bool> tie;
+  int compared = 0, agree = 0, disagree_at_ties = 0, disagree_unexplained = 0;
+};
+SameSamples same_samples(const ProgramRun& run);
+
+}  // namespace passim
