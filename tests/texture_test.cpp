@@ -290,8 +290,12 @@ TEST(Texture, ErrorsAndIncompleteTextures) {
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
   ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_COLOR_INDEX, GL_UNSIGNED_BYTE, texel);
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
-  ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 8192, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);  // over the limit
+  ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 131072, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);  // > 65536
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  // Within MAX_TEXTURE_SIZE on each side but 2^25 texels, over the 2^24 budget: §2.5's
+  // OUT_OF_MEMORY, and the texture keeps no level.
+  ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 65536, 512, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_OUT_OF_MEMORY));
   ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT16, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, texel);
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
   ctx.glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, texel);  // level undefined
