@@ -405,4 +405,28 @@ SameSamples same_samples(const ProgramRun& run) {
   return out;
 }
 
+Classification classify(const ProgramRun& run) {
+  const RayCaster caster(run.scene);
+  const ProgramOptions& o = run.options;
+  const std::vector<PixelSurface> surfaces = camera_surfaces(run.scene, caster, o.width, o.height);
+  const CapturedImage& att = run.image("attenuation");
+  Classification c;
+  c.self_shadowed_by_mesh.assign(run.scene.meshes.size(), 0);
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const PixelSurface& s = surfaces[k];
+    if (!s.hit) continue;
+    ++c.surfaces;
+    const bool exact = in_shadow_exact(caster, run.scene, s);
+    const bool attenuated = att.codes[k] > 0;
+    const bool faces = glm::dot(s.normal, run.scene.light.eye - s.position) > 0.0;
+    if (!exact && faces) ++c.facing_light;
+    if (!exact && attenuated) {
+      ++c.lit_shadowed;
+      if (faces) ++c.self_shadowed, ++c.self_shadowed_by_mesh[static_cast<std::size_t>(s.mesh)];
+    }
+    if (exact && !attenuated) ++c.shadowed_lit;
+  }
+  return c;
+}
+
 }  // namespace passim

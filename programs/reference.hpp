@@ -64,4 +64,15 @@ struct SameSamples {
 };
 SameSamples same_samples(const ProgramRun& run);
 
+// A run's attenuation against the exact shadow test (double, no quantisation) per pixel.
+struct Classification {
+  int surfaces = 0;             // pixels that see a surface
+  int lit_shadowed = 0;         // lit by the reference, attenuated by the program
+  int shadowed_lit = 0;         // shadowed by the reference, not attenuated by the program
+  int self_shadowed = 0;        // lit_shadowed on surfaces that face the light
+  int facing_light = 0;         // pixels on surfaces facing the light and lit by the reference
+  std::vector<int> self_shadowed_by_mesh;  // self_shadowed per scene mesh (mesh 0: the ground)
+};
+Classification classify(const ProgramRun& run);
+
 }  // namespace passim

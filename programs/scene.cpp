@@ -312,21 +312,26 @@ void fit_light_frustum(Scene& scene) {
   light.center = 0.5 * (lo + hi);
   const glm::dvec3 dir = glm::normalize(light.center - light.eye);
   if (std::abs(glm::dot(dir, glm::normalize(light.up))) > 0.99) light.up = {0.0, 0.0, -1.0};
-  // The field of view: the widest angle of a receiver vertex from the light's axis;
-  // near and far: the nearest and farthest vertex of any mesh (all cast shadows).
+  // The field of view: the widest angle of a receiver vertex from the light's axis.
+  // Near and far: the scene's bounding sphere seen from the light (the usual set-up of
+  // a light frustum; it spends the depth encoding on the whole sphere).
   const glm::dmat4 view = light.view_matrix();
-  double tan_half = 0.0, z_near = 1e300, z_far = 0.0;
+  double tan_half = 0.0;
+  glm::dvec3 all_lo(1e300), all_hi(-1e300);
   for (const Mesh& m : scene.meshes)
     for (std::size_t k = 0; k + 2 < m.positions.size(); k += 3) {
-      const glm::dvec4 e = view * glm::dvec4(m.positions[k], m.positions[k + 1], m.positions[k + 2], 1.0);
+      const glm::dvec3 p(m.positions[k], m.positions[k + 1], m.positions[k + 2]);
+      all_lo = glm::min(all_lo, p), all_hi = glm::max(all_hi, p);
+      const glm::dvec4 e = view * glm::dvec4(p, 1.0);
       const double depth = -e.z;
-      z_near = std::min(z_near, depth), z_far = std::max(z_far, depth);
       if (m.receiver && depth > 0.0) tan_half = std::max({tan_half, std::abs(e.x) / depth, std::abs(e.y) / depth});
     }
   light.fovy_degrees = glm::degrees(2.0 * std::atan(std::min(tan_half * 1.02, 20.0)));
-  const double margin = 0.02 * (z_far - z_near);
-  light.near_plane = std::max(z_near - margin, 0.01 * z_far);
-  light.far_plane = z_far + margin;
+  const glm::dvec3 mid = 0.5 * (all_lo + all_hi);
+  const double radius = 0.5 * glm::length(all_hi - all_lo);
+  const double dist = glm::dot(mid - light.eye, glm::normalize(light.center - light.eye));
+  light.near_plane = std::max(dist - radius, 0.01 * (dist + radius));
+  light.far_plane = dist + radius;
 }
 
 std::vector<std::string> builtin_scene_names() { return {"paper", "fig8", "edges"}; }

@@ -163,6 +163,20 @@ INSTANTIATE_TEST_SUITE_P(Programs, Transcription,
                                            TranscriptionCase{"fast-pcf", 2, 1}, TranscriptionCase{"fast-pcf", 4, 1},
                                            TranscriptionCase{"mdsm", 2, 2}, TranscriptionCase{"hw-shadow", 0, 1}));
 
+// The paper's conclusion: depth encoded in 8-bit colour loses precision. Measured against
+// the exact shadow test on the paper scene at the default bias (one 8-bit step of depth at
+// both widths): 12 bits misses fewer shadows where occluder and receiver lie within one
+// 8-bit step (light leaking at contacts). Figures in docs/programs.md.
+TEST(Programs, TwelveBitsLeakLessThanEightOnThePaperScene) {
+  const Classification c8 = classify(run("shadow-map", 0, 8, "paper"));
+  const Classification c12 = classify(run("shadow-map", 0, 12, "paper"));
+  std::cout << "  paper scene, shadow-map, default bias: 8 bits " << c8.shadowed_lit << " shadowed pixels lit, "
+            << c8.self_shadowed << " self-shadowed; 12 bits " << c12.shadowed_lit << " and " << c12.self_shadowed
+            << "\n";
+  EXPECT_EQ(c8.surfaces, c12.surfaces);
+  EXPECT_LT(c12.shadowed_lit, c8.shadowed_lit);
+}
+
 TEST(Scenes, PaperSceneHasAboutSevenThousandTriangles) {
   const Scene s = make_scene("paper");
   // Counted by hand from the builders: ground 40·40·2 = 3200, spheres 32·20·2 − 2·32 =
