@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -240,8 +241,11 @@ class Program {
   void begin(const std::string& label) { gl_.glPushGroupMarkerEXT(static_cast<GLsizei>(label.size()), label.c_str()); }
   void end() { gl_.glPopGroupMarkerEXT(); }
 
-  void capture(const std::string& name, const std::string& plane, int w, int h, bool intermediate = true) {
+  void capture(std::string name, const std::string& plane, int w, int h, bool intermediate = true) {
     if (intermediate && !o_.intermediates) return;
+    // A pass that repeats (one per map or phase) numbers its captures: mask, mask1, ...
+    const int seen = captures_[name]++;
+    if (seen > 0) name += std::to_string(seen);
     const CaptureRegion region{0, 0, w, h};
     run_.result.images.push_back(capture_plane(gl_, name, plane, GL_BACK, region));
     writer_.output(name, plane, plane == "depth" ? "" : "GL_BACK", region);
@@ -600,6 +604,7 @@ class Program {
   const Scene& scene_;
   int bits_ = 8, max_code_ = 255, map_ = 512, width_ = 800, height_ = 600;
   GLuint scene_list_ = 0, ramp_ = 0;
+  std::map<std::string, int> captures_;
 };
 
 bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
