@@ -86,7 +86,7 @@ double uniform01(std::mt19937& rng) { return static_cast<double>(rng() >> 8) / 1
 
 class Program {
  public:
-  Program(ProgramRun& run, Context& gl, TraceWriter& writer)
+  Program(ProgramRun& run, Context& gl, TraceWriter* writer)
       : run_(run), o_(run.options), gl_(gl), writer_(writer), scene_(run.scene) {
     bits_ = o_.color_bits;
     max_code_ = (1 << bits_) - 1;
@@ -95,8 +95,11 @@ class Program {
     height_ = o_.height;
   }
 
-  void run() {
-    setup();
+  // One whole frame: the shadow map(s) generated, tested, counted, composed. The
+  // frame's textures are deleted at its end, as an application redrawing would.
+  void frame() {
+    run_.result.images.clear();
+    captures_.clear();
     const std::string& p = o_.program;
     if (p == "shadow-map") shadow_map();
     else if (p == "pcf") pcf();
@@ -104,10 +107,11 @@ class Program {
     else if (p == "mdsm") mdsm();
     else hw_shadow();
     final_image();
+    gl_.glDeleteTextures(static_cast<GLsizei>(frame_textures_.size()), frame_textures_.data());
+    frame_textures_.clear();
   }
 
- private:
-  // ---------------------------------------------------------------- set-up
+  // The state every frame starts from: the scene's display list, texgen, the ramp.
   void setup() {
     gl_.glDrawBuffer(GL_BACK);
     gl_.glReadBuffer(GL_BACK);
@@ -248,7 +252,7 @@ class Program {
     if (seen > 0) name += std::to_string(seen);
     const CaptureRegion region{0, 0, w, h};
     run_.result.images.push_back(capture_plane(gl_, name, plane, GL_BACK, region));
-    writer_.output(name, plane, plane == "depth" ? "" : "GL_BACK", region);
+    if (writer_) writer_->output(name, plane, plane == "depth" ? "" : "GL_BACK", region);
   }
 
   // The scene from the light with depth encoded through the ramp, into the channels
@@ -280,6 +284,7 @@ class Program {
     begin(label);
     GLuint tex = 0;
     gl_.glGenTextures(1, &tex);
+    frame_textures_.push_back(tex);
     gl_.glBindTexture(GL_TEXTURE_2D, tex);
     gl_.glCopyTexImage2D(GL_TEXTURE_2D, 0, internal_format, 0, 0, map_, map_, 0);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -600,11 +605,12 @@ class Program {
   ProgramRun& run_;
   const ProgramOptions& o_;
   Context& gl_;
-  TraceWriter& writer_;
+  TraceWriter* writer_;  // null when not recording
   const Scene& scene_;
   int bits_ = 8, max_code_ = 255, map_ = 512, width_ = 800, height_ = 600;
   GLuint scene_list_ = 0, ramp_ = 0;
   std::map<std::string, int> captures_;
+  std::vector<GLuint> frame_textures_;
 };
 
 bool is_power_of_two(int v) { return v > 0 && (v & (v - 1)) == 0; }
@@ -666,8 +672,16 @@ void validate(ProgramOptions& o, const MachineProfile& profile, int map) {
 
 }  // namespace
 
-ProgramRun run_program(const ProgramOptions& options) {
+struct ProgramSession::State {
   ProgramRun run;
+  std::ostringstream trace;
+  std::unique_ptr<TraceWriter> writer;
+  std::unique_ptr<Program> program;
+  int frames = 0;
+};
+
+ProgramSession::ProgramSession(const ProgramOptions& options, bool record) : state_(std::make_unique<State>()) {
+  ProgramRun& run = state_->run;
   run.options = options;
   run.scene = make_scene(options.scene);
   const MachineProfile* profile = find_profile(options.profile);
@@ -689,22 +703,46 @@ ProgramRun run_program(const ProgramOptions& options) {
   const std::string invalid = s.framebuffer.validate(profile->limits.max_framebuffer_size);
   if (!invalid.empty()) throw ProgramError(invalid);
 
-  std::ostringstream trace;
-  trace << "# passim program " << o.program << " on scene " << run.scene.name << " (" << run.triangles
-        << " triangles)\n";
-  TraceWriter writer(trace);
-  writer.write_header(s);
   run.result.context = std::make_unique<Context>(s.framebuffer, s.machine());
-  run.result.context->set_call_sink(&writer);
-  Program(run, *run.result.context, writer).run();
-  run.result.context->set_call_sink(nullptr);
-  run.trace = trace.str();
-  if (!run.result.context->error_log().empty()) {
-    const GlErrorRecord& e = run.result.context->error_log().front();
-    throw std::logic_error(fmt::format("program {} raised GL error {} in {}", o.program,
+  if (record) {
+    state_->trace << "# passim program " << o.program << " on scene " << run.scene.name << " (" << run.triangles
+                  << " triangles)\n";
+    state_->writer = std::make_unique<TraceWriter>(state_->trace);
+    state_->writer->write_header(s);
+    run.result.context->set_call_sink(state_->writer.get());
+  }
+  state_->program = std::make_unique<Program>(run, *run.result.context, state_->writer.get());
+  state_->program->setup();
+}
+
+ProgramSession::~ProgramSession() = default;
+
+void ProgramSession::frame() {
+  if (state_->writer && state_->frames > 0)
+    throw std::logic_error("a recorded program session runs one frame (its @output names would repeat)");
+  state_->program->frame();
+  ++state_->frames;
+  const Context& ctx = *state_->run.result.context;
+  if (!ctx.error_log().empty()) {
+    const GlErrorRecord& e = ctx.error_log().front();
+    throw std::logic_error(fmt::format("program {} raised GL error {} in {}", state_->run.options.program,
                                        enum_name(e.error), e.call));
   }
-  return run;
+}
+
+const ProgramRun& ProgramSession::run() const { return state_->run; }
+
+ProgramRun ProgramSession::finish() {
+  state_->program.reset();
+  state_->run.result.context->set_call_sink(nullptr);
+  state_->run.trace = state_->trace.str();
+  return std::move(state_->run);
+}
+
+ProgramRun run_program(const ProgramOptions& options) {
+  ProgramSession session(options, true);
+  session.frame();
+  return session.finish();
 }
 
 }  // namespace passim

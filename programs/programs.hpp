@@ -68,9 +68,24 @@ struct ProgramRun {
   const CapturedImage& image(const std::string& name) const;
 };
 
-// Runs a program; throws ProgramError for settings it cannot run with and
-// std::runtime_error for a scene file that cannot be read.
+// Runs a program for one frame, recorded; throws ProgramError for settings it cannot
+// run with and std::runtime_error for a scene file that cannot be read.
 ProgramRun run_program(const ProgramOptions& options);
+
+// A program's context set up once (display list, texgen, ramp), for running whole frames
+// again and again (bench/). A recorded session runs one frame.
+class ProgramSession {
+ public:
+  explicit ProgramSession(const ProgramOptions& options, bool record = false);
+  ~ProgramSession();
+  void frame();
+  const ProgramRun& run() const;
+  ProgramRun finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The number of distinct values in a single-channel image, counting values one code
 // apart as one level (the paper's 63 and 64).
