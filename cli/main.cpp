@@ -20,6 +20,7 @@
 #include "pipeline/trace.hpp"
 #include "programs/figure.hpp"
 #include "programs/programs.hpp"
+#include "programs/reference.hpp"
 
 namespace fs = std::filesystem;
 using namespace passim;
@@ -148,6 +149,38 @@ int program_command(ProgramCommand& c) {
     o.filter = a;
   }
   o.jitter = !c.no_jitter;
+  const auto info = std::find_if(program_list().begin(), program_list().end(),
+                                 [&](const ProgramInfo& p) { return p.name == o.program; });
+  if (info != program_list().end() && info->reference) {
+    try {
+      const ReferenceRun ref = run_reference(o);
+      fs::create_directories(c.out);
+      const fs::path image = write_image(ref.image, c.out, c.tiff);
+      const int levels = count_levels(ref.image);
+      const nlohmann::json j = {{"reference", ref.options.program},
+                                {"scene", ref.scene.name},
+                                {"triangles", ref.scene.triangles()},
+                                {"map_size", ref.map_size},
+                                {"filter", ref.options.filter},
+                                {"depths", ref.options.depths},
+                                {"sampling", ref.options.sampling},
+                                {"seed", ref.options.seed},
+                                {"bias_steps", ref.options.bias},
+                                {"bias_depth", ref.bias_depth},
+                                {"levels", levels},
+                                {"images", {{{"name", "attenuation"}, {"file", image.filename().string()}, {"hash", ref.image.hash}}}}};
+      write_text_file(fs::path(c.out) / "reference.json", j.dump(2) + "\n");
+      if (!c.quiet)
+        std::cout << fmt::format("{} on {} (double precision, no pipeline) -> {}\n  wrote {}\n  wrote {}\n"
+                                 "  shadow levels in the attenuation image: {}\n",
+                                 o.program, ref.scene.name, c.out, image.string(), (fs::path(c.out) / "reference.json").string(),
+                                 levels);
+    } catch (const std::exception& e) {
+      std::cerr << "passim: " << e.what() << "\n";
+      return kRunError;
+    }
+    return kOk;
+  }
   ProgramRun run;
   std::vector<fs::path> files;
   try {
@@ -295,7 +328,8 @@ int main(int argc, char** argv) {
 
   auto* program = app.add_subcommand("program", "Run one of the papers' pass programs (passim program --list)");
   ProgramCommand pc;
-  program->add_option("name", pc.options.program, "Program: shadow-map, pcf, fast-pcf, mdsm, hw-shadow");
+  program->add_option("name", pc.options.program,
+                      "Program: shadow-map, pcf, fast-pcf, mdsm, hw-shadow; references: reeves, shader-pcf, mdsm-ref");
   program->add_flag("--list", pc.list, "Describe each program with its paper section");
   program->add_option("--bits", pc.options.color_bits, "Colour width per channel, 4-16")->capture_default_str();
   program->add_option("--depth-bits", pc.options.depth_bits, "Depth-buffer width")->capture_default_str();
@@ -311,7 +345,8 @@ int main(int argc, char** argv) {
   program->add_option("--profile", pc.options.profile, "Machine profile (passim info)")->capture_default_str();
   program->add_flag("--linear", pc.options.linear, "hw-shadow: LINEAR (2x2 filtered) compare");
   program->add_flag("--no-jitter", pc.no_jitter, "pcf: sample the strata's centres instead of jittering");
-  program->add_option("--seed", pc.options.seed, "pcf: jitter seed")->capture_default_str();
+  program->add_option("--seed", pc.options.seed, "pcf, reeves: jitter seed")->capture_default_str();
+  program->add_option("--sampling", pc.options.sampling, "reeves: random, gaussian or jittered")->capture_default_str();
   program->add_flag("--intermediates", pc.options.intermediates, "Also write every intermediate buffer");
   program->add_option("--out,-o", pc.out, "Output directory")->capture_default_str();
   program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");

@@ -36,6 +36,17 @@ const std::vector<ProgramInfo>& program_list() {
       {"hw-shadow", "dedicated hardware (SGIX_shadow)",
        "the baseline: the depth plane copied to a DEPTH_COMPONENT texture, compared with r by the texture unit "
        "(TEXTURE_LEQUAL_R_SGIX), NEAREST or LINEAR (--linear)"},
+      {"reeves", "Reeves, Salesin & Cook 1987 (software reference)",
+       "percentage-closer filtering in double precision over an NxN-texel footprint (default 3x3), N² samples "
+       "--sampling random (a), gaussian (b) or jittered (c); bias; outside the map lit",
+       true},
+      {"shader-pcf", "ogldev tutorial 42 (software reference)",
+       "the tutorial's 3x3 loop of shadow-compare lookups one texel apart; its light factor 0.5 + F/18 is "
+       "1 − attenuation/2 here",
+       true},
+      {"mdsm-ref", "Multiple-depth shadow maps §4.2 (software reference)",
+       "the n-shadow test and PCF(k, n) in double: depths, 3x3 maximum and minimum of an unquantised map",
+       true},
   };
   return list;
 }
@@ -622,6 +633,7 @@ void validate(ProgramOptions& o, const MachineProfile& profile, int map) {
                             [&](const ProgramInfo& p) { return p.name == o.program; });
   if (known == program_list().end())
     throw ProgramError(fmt::format("unknown program '{}' (passim program --list shows them)", o.program));
+  if (known->reference) throw ProgramError(fmt::format("'{}' is a software reference (run_reference)", o.program));
   if (o.color_bits < 4 || o.color_bits > 16)
     throw ProgramError(fmt::format("--bits {}: the programs run at colour widths 4 to 16", o.color_bits));
   if (o.depth_bits < 1 || o.depth_bits > 32) throw ProgramError(fmt::format("--depth-bits {}: 1 to 32", o.depth_bits));

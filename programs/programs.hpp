@@ -39,12 +39,14 @@ struct ProgramOptions {
   bool jitter = true;    // pcf: jitter each stratum's sample (else the strata's centres)
   std::uint32_t seed = 1;
   bool intermediates = false;  // also capture every intermediate buffer
+  std::string sampling = "jittered";  // reeves: random, gaussian or jittered (Reeves et al. (a), (b), (c))
 };
 
 struct ProgramInfo {
   std::string name;
   std::string section;  // the paper's section
   std::string summary;
+  bool reference = false;  // a double-precision software reference, not a pass program
 };
 const std::vector<ProgramInfo>& program_list();
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
+
 #include <map>
+#include <random>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -427,6 +430,147 @@ Classification classify(const ProgramRun& run) {
     if (exact && !attenuated) ++c.shadowed_lit;
   }
   return c;
+}
+
+namespace {
+
+// The unquantised map: the light-depth s of the nearest surface through each texel
+// centre (1 where the light sees nothing), computed when first asked.
+class DoubleMap {
+ public:
+  DoubleMap(const Scene& scene, const RayCaster& caster, int size)
+      : scene_(scene), caster_(caster), size_(size), light_(frame_of(scene.light, 1.0)),
+        depth_(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), -1.0) {}
+  int size() const { return size_; }
+  bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < size_ && j < size_; }
+  double at(int i, int j) {
+    double& d = depth_[static_cast<std::size_t>(j) * static_cast<std::size_t>(size_) + static_cast<std::size_t>(i)];
+    if (d < 0.0) {
+      const auto [o, dir] = ndc_ray(light_, 2.0 * (i + 0.5) / size_ - 1.0, 2.0 * (j + 0.5) / size_ - 1.0);
+      const auto hit = caster_.first_hit(o, dir, 0.0, 1.0);
+      d = hit ? depth_of(o + hit->t * dir) : 1.0;
+    }
+    return d;
+  }
+  double depth_of(const glm::dvec3& p) const {
+    const double z = (light_.view * glm::dvec4(p, 1.0)).z;
+    return (-z - scene_.light.near_plane) / (scene_.light.far_plane - scene_.light.near_plane);
+  }
+  // (u, v) in texels of a world point.
+  glm::dvec2 project(const glm::dvec3& p) const {
+    const glm::dvec4 clip = light_.projection * light_.view * glm::dvec4(p, 1.0);
+    return {(clip.x / clip.w * 0.5 + 0.5) * size_, (clip.y / clip.w * 0.5 + 0.5) * size_};
+  }
+
+ private:
+  const Scene& scene_;
+  const RayCaster& caster_;
+  int size_;
+  Frame light_;
+  std::vector<double> depth_;
+};
+
+double uniform01(std::mt19937& rng) { return static_cast<double>(rng() >> 8) / 16777216.0; }
+
+}  // namespace
+
+ReferenceRun run_reference(const ProgramOptions& options) {
+  ReferenceRun ref;
+  ref.options = options;
+  ProgramOptions& o = ref.options;
+  const bool reeves = o.program == "reeves", shader = o.program == "shader-pcf", mdsm = o.program == "mdsm-ref";
+  if (!reeves && !shader && !mdsm) throw ProgramError(fmt::format("'{}' is not a software reference", o.program));
+  ref.scene = make_scene(o.scene);
+  ref.map_size = o.map_size > 0 ? o.map_size : ref.scene.default_map_size;
+  if (ref.map_size < 1 || ref.map_size > 16384) throw ProgramError(fmt::format("--map {}: 1 to 16384", ref.map_size));
+  if (o.width < 1 || o.height < 1 || o.width > 8192 || o.height > 8192)
+    throw ProgramError(fmt::format("--size {}x{}: 1 to 8192 on each side", o.width, o.height));
+  if (o.color_bits < 1 || o.color_bits > 16) throw ProgramError(fmt::format("--bits {}: 1 to 16", o.color_bits));
+  if (o.filter == 0) o.filter = shader ? 3 : reeves ? 3 : 2;
+  if (shader && o.filter != 3) throw ProgramError("shader-pcf is the tutorial's 3x3 loop (--filter 3x3)");
+  if (reeves && (o.filter < 1 || o.filter > 16)) throw ProgramError(fmt::format("reeves --filter {0}x{0}: 1 to 16", o.filter));
+  if (mdsm && (o.filter < 1 || o.filter > 3 || o.depths < 1 || o.depths > 3))
+    throw ProgramError("mdsm-ref: --filter 1x1 to 3x3 and --depths 1 to 3");
+  if (reeves && o.sampling != "random" && o.sampling != "gaussian" && o.sampling != "jittered")
+    throw ProgramError(fmt::format("--sampling {}: random, gaussian or jittered", o.sampling));
+  if (std::isnan(o.bias)) o.bias = std::ldexp(1.0, o.color_bits - 8);
+  if (!std::isfinite(o.bias)) throw ProgramError("--bias must be a finite number of steps");
+  ref.bias_depth = o.bias / std::ldexp(1.0, o.color_bits);
+
+  const RayCaster caster(ref.scene);
+  DoubleMap map(ref.scene, caster, ref.map_size);
+  const std::vector<PixelSurface> surfaces = camera_surfaces(ref.scene, caster, o.width, o.height);
+  ref.attenuation.assign(surfaces.size(), 0.0);
+  const int n = o.filter;
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    const PixelSurface& s = surfaces[k];
+    if (!s.hit) continue;
+    const double d = map.depth_of(s.position) - ref.bias_depth;
+    const glm::dvec2 uv = map.project(s.position);
+    // A lookup: shadowed when the map is nearer; outside the map lit (Reeves).
+    auto shadowed = [&](double x, double y) {
+      const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+      return map.inside(i, j) && map.at(i, j) < d;
+    };
+    double a = 0.0;
+    if (reeves) {
+      // A generator per pixel, so any pixel's samples are reproducible on their own.
+      std::mt19937 rng(o.seed * 2654435761u + static_cast<std::uint32_t>(k));
+      const double x0 = uv.x - 0.5 * n, y0 = uv.y - 0.5 * n;
+      int count = 0;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          double x, y;
+          if (o.sampling == "jittered") {  // (c): one sample in each of the N×N cells
+            x = x0 + i + uniform01(rng), y = y0 + j + uniform01(rng);
+          } else if (o.sampling == "random") {  // (a): uniform over the box
+            x = x0 + n * uniform01(rng), y = y0 + n * uniform01(rng);
+          } else {  // (b): a Gaussian (σ = N/4, Box–Muller) kept inside the box
+            const double r = std::sqrt(-2.0 * std::log(1.0 - uniform01(rng))), t = 2.0 * 3.14159265358979323846 * uniform01(rng);
+            x = std::clamp(uv.x + 0.25 * n * r * std::cos(t), x0, x0 + n - 1e-9);
+            y = std::clamp(uv.y + 0.25 * n * r * std::sin(t), y0, y0 + n - 1e-9);
+          }
+          count += shadowed(x, y);
+        }
+      a = static_cast<double>(count) / (n * n);
+    } else if (shader) {
+      // The tutorial: 9 lookups at the projection ± one texel; F = how many are lit.
+      int lit = 0;
+      for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) lit += !shadowed(uv.x + x, uv.y + y);
+      a = (9.0 - lit) / 9.0;  // the tutorial's factor 0.5 + lit/18 = 1 − a/2
+    } else {
+      // MDSM: Z1 ≥ … ≥ Zn = the 3x3 maximum, the depth, the 3x3 minimum (n = 3); the n-ST
+      // counts the Zi nearer than the point; PCF(k, n) averages k lookups one texel apart.
+      int count = 0;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const int ti = static_cast<int>(std::floor(uv.x + i - 0.5 * (n - 1)));
+          const int tj = static_cast<int>(std::floor(uv.y + j - 0.5 * (n - 1)));
+          if (!map.inside(ti, tj)) continue;
+          double z = map.at(ti, tj), hi = z, lo = z;
+          for (int b = -1; b <= 1; ++b)
+            for (int c = -1; c <= 1; ++c)
+              if (map.inside(ti + c, tj + b)) hi = std::max(hi, map.at(ti + c, tj + b)), lo = std::min(lo, map.at(ti + c, tj + b));
+          const double depths[3] = {z, hi, lo};
+          for (int c = 0; c < o.depths; ++c) count += depths[c] < d;
+        }
+      a = static_cast<double>(count) / (o.depths * n * n);
+    }
+    ref.attenuation[k] = a;
+  }
+  CapturedImage& img = ref.image;
+  img.name = "attenuation";
+  img.plane = "alpha";
+  img.width = o.width;
+  img.height = o.height;
+  img.channels = 1;
+  img.bits = {16, 0, 0, 0};
+  img.codes.resize(ref.attenuation.size());
+  for (std::size_t k = 0; k < ref.attenuation.size(); ++k)
+    img.codes[k] = static_cast<std::uint32_t>(std::llround(ref.attenuation[k] * 65535.0));
+  img.hash = fnv1a_hex(img.codes, 2);
+  return ref;
 }
 
 }  // namespace passim

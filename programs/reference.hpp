@@ -75,4 +75,18 @@ struct Classification {
 };
 Classification classify(const ProgramRun& run);
 
+// A software reference's result: the attenuation (fraction shadowed) per camera pixel in
+// double, and as a 16-bit single-channel image named "attenuation".
+struct ReferenceRun {
+  ProgramOptions options;
+  Scene scene;
+  int map_size = 0;
+  double bias_depth = 0.0;     // in the ramp's depth units, as the hardware programs'
+  std::vector<double> attenuation;  // row 0 at the bottom; 0 where no surface is seen
+  CapturedImage image;
+};
+// Runs reeves, shader-pcf or mdsm-ref (program_list() marks them `reference`) on an
+// unquantised map: each texel's depth from a ray through its centre.
+ReferenceRun run_reference(const ProgramOptions& options);
+
 }  // namespace passim

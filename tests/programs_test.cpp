@@ -177,6 +177,72 @@ TEST(Programs, TwelveBitsLeakLessThanEightOnThePaperScene) {
   EXPECT_LT(c12.shadowed_lit, c8.shadowed_lit);
 }
 
+// The software references (double precision, no pipeline) on the edges scene.
+ReferenceRun reference(const char* name, int filter, int depths = 1, const char* sampling = "jittered",
+                       std::uint32_t seed = 1, int width = 800) {
+  ProgramOptions o;
+  o.width = width;
+  o.height = width * 3 / 4;
+  o.program = name;
+  o.scene = "edges";
+  o.filter = filter;
+  o.depths = depths;
+  o.sampling = sampling;
+  o.seed = seed;
+  return run_reference(o);
+}
+
+TEST(References, MdsmReferenceGivesTable1sOutcomes) {
+  // PCF(k, n) has n·k + 1 outcomes (MDSM Table 1): (4, 3) -> 13, (9, 2) -> 19.
+  EXPECT_EQ(count_levels(reference("mdsm-ref", 2, 3).image), 13);
+  EXPECT_EQ(count_levels(reference("mdsm-ref", 3, 2).image), 19);
+}
+
+TEST(References, ReevesAndShaderPcfCountTheirSamples) {
+  // N² samples: N² + 1 fractions k/N², at 16 bits each far from the next.
+  EXPECT_EQ(count_levels(reference("reeves", 3).image), 10);
+  EXPECT_EQ(count_levels(reference("reeves", 4, 1, "gaussian").image), 17);
+  const ReferenceRun shader = reference("shader-pcf", 3);
+  EXPECT_EQ(count_levels(shader.image), 10);
+  for (double a : shader.attenuation) {  // the tutorial's F/9 steps
+    const double nine = a * 9.0;
+    EXPECT_NEAR(nine, std::round(nine), 1e-12);
+  }
+}
+
+TEST(References, ReevesIsReproducibleAndSeeded) {
+  const std::string a = reference("reeves", 3, 1, "random", 7, 200).image.hash;
+  EXPECT_EQ(a, reference("reeves", 3, 1, "random", 7, 200).image.hash);
+  EXPECT_NE(a, reference("reeves", 3, 1, "random", 8, 200).image.hash);
+}
+
+TEST(References, UmbraAndLitGroundAreExact) {
+  // Ground farther than 3.9 from the centre is outside the star's shadow (its spikes reach
+  // 2.6 · 12/10.5 = 2.97): lit. Ground under the inner star (radius 1.1 · 12/10.5 = 1.26,
+  // less a texel) that the camera sees past the plate: fully shadowed.
+  for (const char* name : {"reeves", "shader-pcf", "mdsm-ref"}) {
+    const ReferenceRun r = reference(name, name == std::string("mdsm-ref") ? 2 : 3, 2);
+    const RayCaster caster(r.scene);
+    const std::vector<PixelSurface> px = camera_surfaces(r.scene, caster, 800, 600);
+    int umbra = 0, lit = 0;
+    for (std::size_t k = 0; k < px.size(); ++k) {
+      if (!px[k].hit || px[k].mesh != 0) continue;  // ground only
+      const double rad = glm::length(glm::dvec2(px[k].position.x, px[k].position.z));
+      if (rad < 1.2 && !in_shadow_exact(caster, r.scene, px[k])) ADD_FAILURE() << "exact test lit under the star";
+      if (rad < 1.2) {
+        EXPECT_EQ(r.attenuation[k], 1.0) << name;
+        ++umbra;
+      }
+      if (rad > 3.9) {
+        EXPECT_EQ(r.attenuation[k], 0.0) << name;
+        ++lit;
+      }
+    }
+    EXPECT_GT(umbra, 50);
+    EXPECT_GT(lit, 100);
+  }
+}
+
 TEST(Scenes, PaperSceneHasAboutSevenThousandTriangles) {
   const Scene s = make_scene("paper");
   // Counted by hand from the builders: ground 40·40·2 = 3200, spheres 32·20·2 − 2·32 =
