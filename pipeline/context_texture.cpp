@@ -147,7 +147,7 @@ int texel_bits(const InternalFormat& f) {
 
 void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
                            const std::vector<double>* depth) {
-  level.decoded.clear();
+  level.texels_changed();
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t src = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -193,7 +193,7 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   l.border = border;
   l.format = *fmt_info;
   l.texels.assign(4 * static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height), 0);
-  l.decoded.clear();
+  l.texels_changed();
   if (!pixels) return;  // §3.8.1: a NULL image defines the level with unspecified contents (zeros here)
   std::vector<Rgba> rgba;
   std::vector<double> depth;

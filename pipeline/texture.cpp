@@ -89,6 +89,16 @@ const std::vector<double>& TextureLevel::values() const {
   return decoded;
 }
 
+const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4>& bits) const {
+  if (!replace_codes.empty() && replace_codes_bits == bits) return replace_codes;
+  const std::vector<double>& v = values();
+  replace_codes.resize(v.size());
+  replace_codes_bits = bits;
+  for (std::size_t p = 0; p < v.size(); ++p)
+    replace_codes[p] = static_cast<std::uint16_t>(float_to_fixed(v[p], bits[p % 4]));
+  return replace_codes;
+}
+
 int TextureLevel::bits_per_texel() const {
   const InternalFormat& f = format;
   switch (f.base) {

@@ -36,6 +36,15 @@ struct TextureLevel {
   // replicated (Table 3.18 sources): made on first sampling, dropped when texels change.
   mutable std::vector<double> decoded;
   const std::vector<double>& values() const;
+  // The fragment codes each texel's R G B A become at `bits` (float_to_fixed of values()):
+  // what REPLACE writes, for the NEAREST fast path. Made on first use, dropped with decoded.
+  mutable std::vector<std::uint16_t> replace_codes;
+  mutable std::array<int, 4> replace_codes_bits{};
+  const std::vector<std::uint16_t>& codes_at(const std::array<int, 4>& bits) const;
+  void texels_changed() {
+    decoded.clear();
+    replace_codes.clear();
+  }
   int bits_per_texel() const;
 };
 

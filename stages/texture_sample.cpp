@@ -80,6 +80,15 @@ bool compares(const TextureObject& tex, const TextureLevel& level) {
   return level.format.base == GL_DEPTH_COMPONENT && (tex.compare_sgix || tex.compare_mode == GL_COMPARE_R_TO_TEXTURE);
 }
 
+// §3.8.5: i = floor(u), with s = 1 giving W − 1.
+void nearest_ij(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t, int& i, int& j) {
+  const int w = level.width - 2 * level.border, h = dims == 2 ? level.height - 2 * level.border : 1;
+  const double u = wrap_coordinate(s, tex.wrap_s, w) * w;
+  const double v = dims == 2 ? wrap_coordinate(t, tex.wrap_t, h) * h : 0.0;
+  i = wrap_index(std::min(static_cast<int>(floor_exact(u)), w - 1), tex.wrap_s, w);
+  j = dims == 2 ? wrap_index(std::min(static_cast<int>(floor_exact(v)), h - 1), tex.wrap_t, h) : 0;
+}
+
 TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int dims, GLenum filter, double s,
                         double t, double r, Counters& counters) {
   const Fetch fetch{tex, level, counters};
@@ -98,10 +107,14 @@ TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int
   };
   std::array<double, 4> out;
   if (filter == GL_NEAREST) {
-    // §3.8.5: i = floor(u), with s = 1 giving W − 1.
-    const int i = std::min(static_cast<int>(floor_exact(u)), w - 1);
-    const int j = dims == 2 ? std::min(static_cast<int>(floor_exact(v)), h - 1) : 0;
-    out = value(i, j);
+    int i = 0, j = 0;
+    nearest_ij(tex, level, dims, s, t, i, j);
+    std::array<double, 4> c = fetch.texel(i, j);
+    if (cmp) {
+      const double x = compare_depth(tex, level, c[0], r);
+      c = {x, x, x, x};
+    }
+    out = c;
   } else {
     const double uu = u - 0.5, vv = v - 0.5;
     const int i0 = static_cast<int>(floor_exact(uu)), j0 = dims == 2 ? static_cast<int>(floor_exact(vv)) : 0;
@@ -152,6 +165,16 @@ int texture_complete_levels(const TextureObject& tex, int dims) {
 
 bool texture_needs_lod(const TextureObject& tex) {
   return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
+}
+
+std::int64_t nearest_texel_index(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t) {
+  if (!std::isfinite(s)) s = 0.0;  // as sample_texture
+  if (!std::isfinite(t)) t = 0.0;
+  int i = 0, j = 0;
+  nearest_ij(tex, level, dims, s, t, i, j);
+  const int b = level.border, w = level.width - 2 * b, h = level.height - 2 * b;
+  if (i < -b || i >= w + b || j < -b || j >= h + b) return -1;
+  return static_cast<std::int64_t>(j + b) * level.width + (i + b);
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,

@@ -1,6 +1,8 @@
 // Texture sampling, OpenGL 1.2.1 §3.8.5-3.8.8 with SGIX_shadow / ARB_shadow depth
 // comparison: wrap modes, NEAREST and LINEAR filtering, mipmap selection, border texels.
 #pragma once
+#include <cstdint>
+
 #include "pipeline/counters.hpp"
 #include "pipeline/texture.hpp"
 
@@ -19,6 +21,10 @@ int texture_complete_levels(const TextureObject& tex, int dims);
 // Whether the result depends on λ (min and mag filters differ, or mipmapping): when it
 // does not, λ need not be computed.
 bool texture_needs_lod(const TextureObject& tex);
+
+// NEAREST on one level (§3.8.5): the storage index (texel number, border included) of the
+// texel (s, t) selects after wrapping, or −1 when it is the border colour.
+std::int64_t nearest_texel_index(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t);
 
 // Samples the texture at (s, t) (already divided by q) with level-of-detail λ; `r` is the
 // fragment's r/q for depth comparison. `dims` is 1 or 2.

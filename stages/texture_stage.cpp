@@ -6,6 +6,9 @@
 
 namespace passim {
 
+bool TextureStage::general_path_only = false;
+std::uint64_t TextureStage::fast_path_fragments = 0;
+
 void TextureStage::process(FragmentSpan& span) {
   const TextureObject& tex = *setup_.texture;
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
@@ -13,6 +16,41 @@ void TextureStage::process(FragmentSpan& span) {
   const auto& bits = setup_.fragment_bits;
   Counters& counters = *counters_;
   const double* values[4] = {code_values(bits[0]), code_values(bits[1]), code_values(bits[2]), code_values(bits[3])};
+  // Fast path: NEAREST at every λ on the base level, no comparison, REPLACE. The texel's
+  // replacing components become float_to_fixed(texel value) at the fragment's widths
+  // (Table 3.18 with A4's rounding), the others stay: the general path's arithmetic with
+  // each texel's result computed once (TextureLevel::codes_at).
+  const bool fast = !general_path_only && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
+                    setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
+  if (fast) {
+    const bool color = env_base != GL_ALPHA;
+    const bool alpha = env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA ||
+                       env_base == GL_INTENSITY;
+    const std::vector<std::uint16_t>& codes = base.codes_at(bits);
+    const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
+    std::uint64_t fetched = 0;
+    for (int i = 0; i < span.count; ++i) {
+      const std::int64_t p = nearest_texel_index(tex, base, setup_.dims, span.s[i], span.t[i]);
+      std::uint16_t* c = span.rgba + 4 * i;
+      if (p < 0) {  // the border colour: the general arithmetic
+        const TexelValue tv = sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], 0.0, 0, counters);
+        const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
+        const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
+        for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
+        continue;
+      }
+      ++fetched;
+      const std::uint16_t* t = &codes[4 * static_cast<std::size_t>(p)];
+      if (color) c[0] = t[0], c[1] = t[1], c[2] = t[2];
+      if (alpha) c[3] = t[3];
+    }
+    fast_path_fragments += fetched;
+    counters.texture_lookups += fetched;
+    counters.texels_fetched += fetched;
+    counters.texture_bits_read += fetched * texel_bits;
+    next_->process(span);
+    return;
+  }
   for (int i = 0; i < span.count; ++i) {
     const TexelValue tv =
         sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);

@@ -386,3 +386,64 @@ TEST(Fog, LinearExpExp2) {
       EXPECT_EQ(ctx.total_counters().fog_operations, 1u);
     }
 }
+
+#include <random>
+
+#include "stages/texture_stage.hpp"
+
+TEST(TextureFastPath, NearestReplaceMatchesTheGeneralPath) {
+  // Random textured triangles (projective coordinates, every wrap mode, borders, 1D and 2D,
+  // every base format, widths 4-16, fragment widths 5/8/12): planes and counters must be
+  // identical with and without the NEAREST/REPLACE fast path.
+  const GLenum formats[] = {GL_ALPHA8, GL_LUMINANCE12, GL_LUMINANCE4_ALPHA4, GL_INTENSITY16, GL_RGB5, GL_RGBA12, GL_RGB10_A2};
+  const GLenum wraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
+  auto draw = [&](Context& ctx, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-4.0f, 36.0f), st(-1.5f, 2.5f), q(0.3f, 2.0f), c(0.0f, 1.0f);
+    test::window_projection(ctx);
+    ctx.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const int dims = 1 + static_cast<int>(rng() % 2), border = static_cast<int>(rng() % 2);
+    const GLenum target = dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D;
+    const int w = 4 << (rng() % 3), h = dims == 1 ? 1 : 2 << (rng() % 3);
+    std::vector<float> texels(static_cast<std::size_t>((w + 2 * border) * (h + (dims == 2 ? 2 * border : 0)) * 4));
+    for (float& v : texels) v = c(rng);
+    const GLenum format = formats[rng() % 7];
+    if (dims == 1)
+      ctx.glTexImage1D(target, 0, static_cast<GLint>(format), w + 2 * border, border, GL_RGBA, GL_FLOAT, texels.data());
+    else
+      ctx.glTexImage2D(target, 0, static_cast<GLint>(format), w + 2 * border, h + 2 * border, border, GL_RGBA, GL_FLOAT,
+                       texels.data());
+    ctx.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    ctx.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    ctx.glTexParameteri(target, GL_TEXTURE_WRAP_S, static_cast<GLint>(wraps[rng() % 3]));
+    ctx.glTexParameteri(target, GL_TEXTURE_WRAP_T, static_cast<GLint>(wraps[rng() % 3]));
+    const GLfloat border_color[4] = {c(rng), c(rng), c(rng), c(rng)};
+    ctx.glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border_color);
+    ctx.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, rng() % 4 ? GL_REPLACE : GL_MODULATE);
+    ctx.glEnable(target);
+    for (int k = 0; k < 30; ++k) {
+      ctx.glBegin(GL_TRIANGLES);
+      for (int v = 0; v < 3; ++v) {
+        ctx.glColor4f(c(rng), c(rng), c(rng), c(rng));
+        const float qq = q(rng);
+        ctx.glTexCoord4f(st(rng) * qq, st(rng) * qq, 0.0f, qq);
+        ctx.glVertex3f(pos(rng), pos(rng), 0.0f);
+      }
+      ctx.glEnd();
+    }
+  };
+  TextureStage::fast_path_fragments = 0;
+  for (int bits : {5, 8, 12}) {
+    for (unsigned seed = 1; seed <= 40; ++seed) {
+      Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
+      draw(fast, seed);
+      TextureStage::general_path_only = true;
+      draw(general, seed);
+      TextureStage::general_path_only = false;
+      ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba) << bits << " " << seed;
+      ASSERT_TRUE(fast.total_counters() == general.total_counters()) << bits << " " << seed;
+      ASSERT_EQ(fast.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    }
+  }
+  EXPECT_GT(TextureStage::fast_path_fragments, 10000u);  // the fast path did run
+}
