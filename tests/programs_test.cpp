@@ -55,7 +55,15 @@ INSTANTIATE_TEST_SUITE_P(
                                          LevelCase{"fast-pcf", 4, 1, 17}, LevelCase{"mdsm", 2, 1, 5},
                                          LevelCase{"mdsm", 2, 2, 9}, LevelCase{"mdsm", 2, 3, 13},
                                          LevelCase{"mdsm", 3, 2, 19}, LevelCase{"hw-shadow", 0, 1, 2}),
-                       ::testing::Values(8, 12)));
+                       ::testing::Values(8, 12)),
+    [](const ::testing::TestParamInfo<std::tuple<LevelCase, int>>& info) {
+      const LevelCase& c = std::get<0>(info.param);
+      std::string name = std::string(c.program) + "_" + std::to_string(c.filter) + "x" + std::to_string(c.filter) +
+                         "_n" + std::to_string(c.depths) + "_" + std::to_string(std::get<1>(info.param)) + "bit";
+      for (char& ch : name)
+        if (ch == '-') ch = '_';
+      return name;
+    });
 
 TEST(Programs, PcfCountsWithThePapersConstantsAt8Bits) {
   // Figure 4 at 8 bits: each shadowed channel adds 64 (63 for one of them) and four sum
@@ -161,7 +169,14 @@ INSTANTIATE_TEST_SUITE_P(Programs, Transcription,
                          ::testing::Values(TranscriptionCase{"shadow-map", 0, 1}, TranscriptionCase{"pcf", 2, 1},
                                            TranscriptionCase{"pcf", 3, 1}, TranscriptionCase{"pcf", 4, 1},
                                            TranscriptionCase{"fast-pcf", 2, 1}, TranscriptionCase{"fast-pcf", 4, 1},
-                                           TranscriptionCase{"mdsm", 2, 2}, TranscriptionCase{"hw-shadow", 0, 1}));
+                                           TranscriptionCase{"mdsm", 2, 2}, TranscriptionCase{"hw-shadow", 0, 1}),
+                         [](const ::testing::TestParamInfo<TranscriptionCase>& info) {
+                           std::string name = std::string(info.param.program) + "_" + std::to_string(info.param.filter) +
+                                              "x" + std::to_string(info.param.filter);
+                           for (char& ch : name)
+                             if (ch == '-') ch = '_';
+                           return name;
+                         });
 
 // The paper's conclusion: depth encoded in 8-bit colour loses precision. Measured against
 // the exact shadow test on the paper scene at the default bias (one 8-bit step of depth at
