@@ -247,6 +247,18 @@ class Program {
     return m * scene_.light.projection_matrix(1.0) * camera_to_light();
   }
 
+  // The scene drawn with texture `tex` on `target`, coordinates from texgen through
+  // `texture_matrix`.
+  void draw_textured(GLenum target, GLuint tex, const glm::dmat4& texture_matrix) {
+    load_texture_matrix(texture_matrix);
+    texgen(true);
+    gl_.glBindTexture(target, tex);
+    gl_.glEnable(target);
+    gl_.glCallList(scene_list_);
+    gl_.glDisable(target);
+    texgen(false);
+  }
+
   void texgen(bool on) {
     for (GLenum c : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
       on ? gl_.glEnable(c) : gl_.glDisable(c);
@@ -279,13 +291,7 @@ class Program {
     if (channel >= 0) gl_.glColorMask(channel == 0, channel == 1, channel == 2, channel == 3);
     gl_.glDisable(GL_CULL_FACE);  // the map holds the nearest surface, front or back
     gl_.glDisable(GL_LIGHTING);
-    load_texture_matrix(ramp_matrix(0.0));
-    texgen(true);
-    gl_.glBindTexture(GL_TEXTURE_1D, ramp_);
-    gl_.glEnable(GL_TEXTURE_1D);
-    gl_.glCallList(scene_list_);
-    gl_.glDisable(GL_TEXTURE_1D);
-    texgen(false);
+    draw_textured(GL_TEXTURE_1D, ramp_, ramp_matrix(0.0));
     gl_.glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     end();
   }
@@ -318,13 +324,7 @@ class Program {
     gl_.glCullFace(GL_BACK);
     gl_.glDisable(GL_LIGHTING);
     gl_.glDepthFunc(GL_LESS);
-    load_texture_matrix(ramp_matrix(run_.bias_depth) * camera_to_light());
-    texgen(true);
-    gl_.glBindTexture(GL_TEXTURE_1D, ramp_);
-    gl_.glEnable(GL_TEXTURE_1D);
-    gl_.glCallList(scene_list_);
-    gl_.glDisable(GL_TEXTURE_1D);
-    texgen(false);
+    draw_textured(GL_TEXTURE_1D, ramp_, ramp_matrix(run_.bias_depth) * camera_to_light());
     end();
     capture("camera-depth", "color", width_, height_);
   }
@@ -340,13 +340,7 @@ class Program {
     gl_.glEnable(GL_BLEND);
     gl_.glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
     gl_.glBlendFunc(GL_ONE, GL_ONE);
-    load_texture_matrix(projective_matrix(ds, dt));
-    texgen(true);
-    gl_.glBindTexture(GL_TEXTURE_2D, map);
-    gl_.glEnable(GL_TEXTURE_2D);
-    gl_.glCallList(scene_list_);
-    gl_.glDisable(GL_TEXTURE_2D);
-    texgen(false);
+    draw_textured(GL_TEXTURE_2D, map, projective_matrix(ds, dt));
     gl_.glDisable(GL_BLEND);
     gl_.glBlendEquation(GL_FUNC_ADD);
     gl_.glDepthMask(GL_TRUE);
@@ -551,7 +545,7 @@ class Program {
     end();
     capture("shadowmap", "depth", map_, map_, false);
     run_.samples.push_back({0, 0, 0.5, 0.5});
-    copy_map_to_texture(depth_format(o_.depth_bits), "copy to texture");
+    const GLuint map = copy_map_to_texture(depth_format(o_.depth_bits), "copy to texture");
     const GLint filter = o_.linear ? GL_LINEAR : GL_NEAREST;
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
@@ -565,12 +559,7 @@ class Program {
     gl_.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl_.glEnable(GL_CULL_FACE);
     gl_.glCullFace(GL_BACK);
-    load_texture_matrix(projective_matrix(0.0, 0.0, run_.bias_depth));
-    texgen(true);
-    gl_.glEnable(GL_TEXTURE_2D);
-    gl_.glCallList(scene_list_);
-    gl_.glDisable(GL_TEXTURE_2D);
-    texgen(false);
+    draw_textured(GL_TEXTURE_2D, map, projective_matrix(0.0, 0.0, run_.bias_depth));
     end();
   }
 
