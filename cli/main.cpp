@@ -18,6 +18,7 @@
 #include "pipeline/profile.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
+#include "cli/cost_command.hpp"
 #include "programs/figure.hpp"
 #include "programs/programs.hpp"
 #include "programs/reference.hpp"
@@ -224,7 +225,21 @@ int info_command(bool calls) {
         l.max_framebuffer_size, l.max_viewport_size, l.max_texture_size, l.max_lights, l.max_clip_planes,
         l.subpixel_bits, l.max_convolution_width, l.max_convolution_height, l.max_color_table_width,
         l.max_histogram_width, l.max_pixel_map_table, l.max_list_nesting);
-    std::cout << fmt::format("  sources: {}\n\n", p.sources);
+    std::cout << fmt::format("  sources: {}\n", p.sources);
+    const CostRates& r = p.rates;
+    if (r.triangles > 0.0)
+      std::cout << fmt::format(
+          "  cost rates (M/s): vertices {:g}  triangles {:g}  fragments {:g}  texture {:g}  framebuffer {:g} MB\n"
+          "          pixels {:g}  scale/bias {:g}  table {:g}  matrix {:g}  convolution {:g}/{:g}/{:g}\n"
+          "          accumulation {:g}  clear {:g}  texture load {:g} MB  pass overhead {:g} us\n"
+          "          ({})\n",
+          r.vertices / 1e6, r.triangles / 1e6, r.fragments / 1e6, r.texture_lookups / 1e6, r.framebuffer_bytes / 1e6,
+          r.pixels / 1e6, r.scale_bias / 1e6, r.color_table / 1e6, r.color_matrix / 1e6, r.convolution[0] / 1e6,
+          r.convolution[1] / 1e6, r.convolution[2] / 1e6, r.accumulation / 1e6, r.clear / 1e6,
+          r.texture_load_bytes / 1e6, r.pass_overhead * 1e6, r.sources);
+    else
+      std::cout << "  cost rates: none (not a timed machine)\n";
+    std::cout << "\n";
   }
   return kOk;
 }
@@ -352,6 +367,24 @@ int main(int argc, char** argv) {
   program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");
   program->add_flag("--quiet,-q", pc.quiet, "Print nothing but errors");
 
+  auto* report = app.add_subcommand("report", "Reports on a trace or a program (cost)");
+  report->require_subcommand(1);
+  auto* cost = report->add_subcommand("cost", "Estimated time per pass and stage on modelled machines (docs/cost-model.md)");
+  CostCommand cc;
+  std::string cost_profiles = "octane-vpro8", cost_filter;
+  bool cost_csv = false, cost_json = false, cost_markdown = false;
+  cost->add_option("trace", cc.trace, "A .pass trace (or give --program)");
+  cost->add_option("--program", cc.program.program, "A program instead of a trace (passim program --list)");
+  cost->add_option("--filter", cost_filter, "The program's footprint NxN");
+  cost->add_option("--scene", cc.program.scene, "The program's scene")->capture_default_str();
+  cost->add_option("--map", cc.program.map_size, "The program's shadow-map size");
+  cost->add_option("--bits", cc.program.color_bits, "Colour width (default: the profile's)");
+  cost->add_option("--profile", cost_profiles, "Machine profiles, comma-separated")->capture_default_str();
+  cost->add_flag("--csv", cost_csv, "CSV on stdout");
+  cost->add_flag("--json", cost_json, "JSON on stdout");
+  cost->add_flag("--markdown", cost_markdown, "Markdown tables on stdout");
+  cost->add_flag("--paper", cc.paper, "Predicted against published frames per second (Figures 7 and 8)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -364,6 +397,33 @@ int main(int argc, char** argv) {
   }
   if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
   if (*info) return info_command(calls);
+  if (*cost) {
+    cc.program_given = cost->count("--program") > 0;
+    cc.bits_given = cost->count("--bits") > 0;
+    cc.profiles.clear();
+    std::stringstream list(cost_profiles);
+    for (std::string item; std::getline(list, item, ',');)
+      if (!item.empty()) cc.profiles.push_back(item);
+    if (cost_csv + cost_json + cost_markdown > 1) {
+      std::cerr << "passim report cost: choose one of --csv, --json, --markdown\n";
+      return kUsage;
+    }
+    cc.format = cost_csv ? "csv" : cost_json ? "json" : cost_markdown ? "markdown" : "text";
+    if (!cc.paper && cc.trace.empty() == !cc.program_given) {
+      std::cerr << "passim report cost: give a trace or --program (not both), or --paper\n";
+      return kUsage;
+    }
+    if (!cost_filter.empty()) {
+      int a = 0, b = 0;
+      const int got = std::sscanf(cost_filter.c_str(), "%dx%d", &a, &b);
+      if (got < 1 || (got == 2 && a != b)) {
+        std::cerr << "passim: --filter " << cost_filter << ": expected NxN (square), e.g. 2x2\n";
+        return kUsage;
+      }
+      cc.program.filter = a;
+    }
+    return cost_command(cc);
+  }
   if (*program) {
     if (!pc.list && program->count("name") == 0) {
       std::cerr << "passim program: name a program (passim program --list)\n";

@@ -40,6 +40,23 @@ struct ArithmeticOptions {
   bool quantise_vertex_colors = true;
 };
 
+// Rates of the cost model (docs/cost-model.md), per second; 0 = the stage is not timed.
+struct CostRates {
+  double vertices = 0;           // transformed and lit
+  double triangles = 0;          // set up for rasterization
+  double fragments = 0;          // through the per-fragment operations
+  double texture_lookups = 0;
+  double framebuffer_bytes = 0;  // colour, depth, stencil bits read + written, / 8
+  double pixels = 0;             // pixel groups through the pixel path (draw, read, copy)
+  double scale_bias = 0, color_table = 0, color_matrix = 0;  // pixel-path operations
+  double convolution[3] = {0, 0, 0};  // pixels/s through a 3x3, 5x5, 7x7 filter
+  double accumulation = 0;       // accumulation-buffer pixel operations
+  double clear = 0;              // pixels cleared per buffer
+  double texture_load_bytes = 0;  // into texture memory
+  double pass_overhead = 0;      // seconds per pass that does any work
+  std::string sources;           // where each figure comes from
+};
+
 struct MachineProfile {
   std::string name;
   std::string description;
@@ -50,6 +67,7 @@ struct MachineProfile {
   MachineLimits limits;
   ArithmeticOptions arithmetic;
   std::string sources;  // where the figures come from
+  CostRates rates;
 };
 
 const std::vector<MachineProfile>& machine_profiles();
