@@ -19,6 +19,7 @@
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
 #include "cli/cost_command.hpp"
+#include "cli/study_command.hpp"
 #include "programs/figure.hpp"
 #include "programs/programs.hpp"
 #include "programs/reference.hpp"
@@ -385,6 +386,30 @@ int main(int argc, char** argv) {
   cost->add_flag("--markdown", cost_markdown, "Markdown tables on stdout");
   cost->add_flag("--paper", cc.paper, "Predicted against published frames per second (Figures 7 and 8)");
 
+  auto* study = app.add_subcommand("study", "Precision studies (docs/studies.md)");
+  study->require_subcommand(1);
+  auto* precision = study->add_subcommand("precision", "A program over a sweep of widths, measured against its double-precision reference");
+  StudyCommand sc;
+  precision->add_option("--program", sc.base.program, "The program (passim program --list)")->required();
+  precision->add_option("--filter", sc.filter, "Its footprint NxN");
+  precision->add_option("--depths", sc.base.depths, "mdsm: depths per cell")->capture_default_str();
+  precision->add_option("--scene", sc.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
+  precision->add_option("--profile", sc.base.profile, "Machine profile")->capture_default_str();
+  precision->add_option("--bits", sc.bits, "Colour widths: a list of values and ranges")->capture_default_str();
+  precision->add_option("--depth-bits", sc.depth_bits, "Depth widths (default 24)");
+  precision->add_option("--bias", sc.biases, "Biases in 8-bit steps of depth, e.g. 0,0.5,1 (default: the program's)");
+  precision->add_option("--map", sc.maps, "Shadow-map sizes (default: the scene's)");
+  precision->add_option("--size", sc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
+  precision->add_option("--jobs,-j", sc.jobs, "Runs in parallel (identical results)")->capture_default_str();
+  precision->add_option("--shard", sc.shard, "Run slice i of n (i/n); passim merge joins the slices")->capture_default_str();
+  precision->add_option("--out,-o", sc.out, "Output directory")->capture_default_str();
+  precision->add_flag("--quiet,-q", sc.quiet, "No table, no progress line");
+  auto* merge = app.add_subcommand("merge", "Join sharded study outputs into the files an unsharded run writes");
+  std::vector<std::string> merge_dirs;
+  std::string merge_out = "study";
+  merge->add_option("dirs", merge_dirs, "The slices' output directories")->required();
+  merge->add_option("--out,-o", merge_out, "Output directory")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -397,6 +422,8 @@ int main(int argc, char** argv) {
   }
   if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
   if (*info) return info_command(calls);
+  if (*precision) return study_command(sc);
+  if (*merge) return merge_command(merge_dirs, merge_out);
   if (*cost) {
     cc.program_given = cost->count("--program") > 0;
     cc.bits_given = cost->count("--bits") > 0;

@@ -234,12 +234,15 @@ class SnappedLightView {
 
 class SameSampleEvaluator {
  public:
-  explicit SameSampleEvaluator(const ProgramRun& run)
+  // `exact`: the algorithm without the pipeline's quantisation — exact geometry (no
+  // vertex snapping) and depths at 40 bits (a step of 10^-12 of the depth range).
+  explicit SameSampleEvaluator(const ProgramRun& run, bool exact = false)
       : run_(run), o_(run.options), scene_(run.scene), caster_(run.scene), map_(run.map_size) {
+    exact_ = exact;
     cam_ = frame_of(scene_.camera, static_cast<double>(o_.width) / o_.height);
     light_ = frame_of(scene_.light, 1.0);
     hw_ = o_.program == "hw-shadow";
-    bits_ = hw_ ? o_.depth_bits : o_.color_bits;
+    bits_ = exact ? 40 : hw_ ? o_.depth_bits : o_.color_bits;
     max_code_ = (std::int64_t{1} << bits_) - 1;
     subpixel_bits_ = run.result.settings.machine().limits.subpixel_bits;
   }
@@ -267,7 +270,7 @@ class SameSampleEvaluator {
     };
     if (hw_) {
       const double r = clip.z / clip.w * 0.5 + 0.5 - run_.bias_depth;
-      const std::int64_t r_code = float_to_fixed(std::clamp(r, 0.0, 1.0), bits_);
+      const std::int64_t r_code = window_code(r);
       decide(clamp_texel(std::floor(u)), clamp_texel(std::floor(v)), 0.5, 0.5,
              [&](std::int64_t texel) { return texel <= r_code; });
       return {lo, hi};
@@ -329,14 +332,29 @@ class SameSampleEvaluator {
   // The code the map holds at texel (i, j) for the sample taken at (dx, dy) inside it
   // (the image plane jittered by (0.5 − dx, 0.5 − dy)), probed (mx, my) texels away
   // from the texel's centre; the cleared value (farthest) where the light sees nothing.
+  // A window depth as the depth plane stores it (A25), or at 40 bits when exact.
+  std::int64_t window_code(double z) const {
+    z = std::clamp(z, 0.0, 1.0);
+    return exact_ ? std::llround(z * static_cast<double>(max_code_)) : static_cast<std::int64_t>(float_to_fixed(z, bits_));
+  }
+
   std::int64_t map_code(int i, int j, double dx, double dy, double mx = 0.0, double my = 0.0) {
+    if (exact_) {  // the scene itself, through the sample point
+      const auto [o, d] = ndc_ray(light_, 2.0 * (i + dx + mx) / map_ - 1.0, 2.0 * (j + dy + my) / map_ - 1.0);
+      const auto hit = caster_.first_hit(o, d, 0.0, 1.0);
+      if (!hit) return max_code_;
+      const glm::dvec3 p = o + hit->t * d;
+      if (!hw_) return encode(depth_of(p));
+      const glm::dvec4 clip = light_.projection * light_.view * glm::dvec4(p, 1.0);
+      return window_code(clip.z / clip.w * 0.5 + 0.5);
+    }
     const std::pair<double, double> key{dx, dy};
     auto it = views_.find(key);
     if (it == views_.end())
       it = views_.emplace(key, SnappedLightView(scene_, light_, map_, 0.5 - dx, 0.5 - dy, subpixel_bits_)).first;
     const auto sample = it->second.sample(i + 0.5 + mx, j + 0.5 + my);
     if (!sample) return max_code_;
-    if (hw_) return float_to_fixed(std::clamp(sample->second, 0.0, 1.0), bits_);
+    if (hw_) return window_code(sample->second);
     return encode(sample->first);
   }
 
@@ -361,12 +379,27 @@ class SameSampleEvaluator {
   Frame cam_, light_;
   std::map<std::pair<double, double>, SnappedLightView> views_;
   int subpixel_bits_ = 4;
+  bool exact_ = false;
   int map_ = 512, bits_ = 8;
   std::int64_t max_code_ = 255;
   bool hw_ = false;
 };
 
 }  // namespace
+
+std::vector<double> exact_attenuation(const ProgramRun& run) {
+  SameSampleEvaluator eval(run, true);
+  const ProgramOptions& o = run.options;
+  const double samples = eval.samples();
+  std::vector<double> out(static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height), -1.0);
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const int c = eval.count(x, y, 0, 0, 0.0).first;
+      out[static_cast<std::size_t>(y) * static_cast<std::size_t>(o.width) + static_cast<std::size_t>(x)] =
+          c < 0 ? -1.0 : c / samples;
+    }
+  return out;
+}
 
 SameSamples same_samples(const ProgramRun& run) {
   SameSampleEvaluator eval(run);

@@ -64,6 +64,11 @@ struct SameSamples {
 };
 SameSamples same_samples(const ProgramRun& run);
 
+// The program's algorithm in double without the pipeline's quantisation (exact geometry,
+// unquantised depths; the program's sample positions, lookups and bias): the attenuation
+// per pixel, −1 where the pixel sees no surface. The precision study's reference.
+std::vector<double> exact_attenuation(const ProgramRun& run);
+
 // A run's attenuation against the exact shadow test (double, no quantisation) per pixel.
 struct Classification {
   int surfaces = 0;             // pixels that see a surface

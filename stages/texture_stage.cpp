@@ -7,7 +7,7 @@
 namespace passim {
 
 bool TextureStage::general_path_only = false;
-std::uint64_t TextureStage::fast_path_fragments = 0;
+std::atomic<std::uint64_t> TextureStage::fast_path_fragments{0};
 
 void TextureStage::process(FragmentSpan& span) {
   const TextureObject& tex = *setup_.texture;
@@ -44,7 +44,7 @@ void TextureStage::process(FragmentSpan& span) {
       if (color) c[0] = t[0], c[1] = t[1], c[2] = t[2];
       if (alpha) c[3] = t[3];
     }
-    fast_path_fragments += fetched;
+    fast_path_fragments.fetch_add(fetched, std::memory_order_relaxed);
     counters.texture_lookups += fetched;
     counters.texels_fetched += fetched;
     counters.texture_bits_read += fetched * texel_bits;

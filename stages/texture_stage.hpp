@@ -4,6 +4,7 @@
 // modelled machines texture before the depth test.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cstdint>
 
 #include "pipeline/counters.hpp"
@@ -31,7 +32,7 @@ class TextureStage final : public FragmentSink {
   void process(FragmentSpan& span) override;
   // Tests set this to compare the NEAREST/REPLACE fast path with the general one.
   static bool general_path_only;
-  static std::uint64_t fast_path_fragments;  // fragments the fast path textured (for tests)
+  static std::atomic<std::uint64_t> fast_path_fragments;  // fragments the fast path textured (for tests)
 
  private:
   FragmentSink* next_ = nullptr;

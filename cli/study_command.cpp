@@ -1,0 +1,153 @@
+#include "cli/study_command.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+#include "pipeline/image_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace passim {
+namespace {
+
+// "4-16", "8,12", "4-8,12": integers and inclusive ranges; each within [lo, hi].
+std::vector<int> int_list(const std::string& text, const char* what, int lo, int hi) {
+  std::vector<int> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    int a = 0, b = 0;
+    char tail = 0;
+    if (std::sscanf(item.c_str(), "%d-%d%c", &a, &b, &tail) == 2) {
+    } else if (std::sscanf(item.c_str(), "%d%c", &a, &tail) == 1) {
+      b = a;
+    } else {
+      throw std::invalid_argument(fmt::format("{} '{}': expected numbers and ranges like 4-16 or 8,12", what, text));
+    }
+    if (a > b || a < lo || b > hi)
+      throw std::invalid_argument(fmt::format("{} '{}': values must lie in {}..{}", what, item, lo, hi));
+    for (int v = a; v <= b; ++v) out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<double> double_list(const std::string& text, const char* what) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0)
+      throw std::invalid_argument(fmt::format("{} '{}': expected non-negative numbers like 0,0.5,1", what, item));
+    out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+void write_outputs(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows, int shard,
+                   int shards) {
+  fs::create_directories(out);
+  write_text_file(out / "study.csv", study_csv(rows));
+  write_text_file(out / "study.json", study_json(sweep, rows, shard, shards).dump(1) + "\n");
+}
+
+}  // namespace
+
+int study_command(const StudyCommand& c) {
+  StudySweep sweep;
+  int shard = 0, shards = 1;
+  try {
+    sweep.base = c.base;
+    if (std::sscanf(c.size.c_str(), "%dx%d", &sweep.base.width, &sweep.base.height) != 2)
+      throw std::invalid_argument(fmt::format("--size {}: expected WIDTHxHEIGHT", c.size));
+    sweep.color_bits = int_list(c.bits, "--bits", 4, 16);
+    if (!c.depth_bits.empty()) sweep.depth_bits = int_list(c.depth_bits, "--depth-bits", 1, 32);
+    if (!c.biases.empty()) sweep.biases = double_list(c.biases, "--bias");
+    if (!c.maps.empty()) {
+      sweep.map_sizes = int_list(c.maps, "--map", 1, 65536);
+      for (int m : sweep.map_sizes)
+        if ((m & (m - 1)) != 0) throw std::invalid_argument(fmt::format("--map {}: a power of two", m));
+    }
+    if (!c.filter.empty()) {
+      int a = 0, b = 0;
+      const int got = std::sscanf(c.filter.c_str(), "%dx%d", &a, &b);
+      if (got < 1 || (got == 2 && a != b)) throw std::invalid_argument(fmt::format("--filter {}: NxN", c.filter));
+      sweep.base.filter = a;
+    }
+    int i = 0, n = 0;
+    char tail = 0;
+    if (std::sscanf(c.shard.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 1 || i > n)
+      throw std::invalid_argument(fmt::format("--shard {}: expected i/n with 1 <= i <= n, e.g. 2/3", c.shard));
+    shard = i - 1, shards = n;
+    if (c.jobs < 1 || c.jobs > 256) throw std::invalid_argument(fmt::format("--jobs {}: 1 to 256", c.jobs));
+    if (!find_profile(c.base.profile)) throw std::invalid_argument(fmt::format("unknown profile '{}'", c.base.profile));
+  } catch (const std::exception& e) {
+    std::cerr << "passim study: " << e.what() << "\n";
+    return 1;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  auto progress = [&](int done, int total) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!c.quiet && s > 1.0) std::cerr << fmt::format("\rpassim study: {}/{} runs, {:.0f} s", done, total, s) << std::flush;
+  };
+  try {
+    const std::vector<StudyRow> rows = run_study(sweep, c.jobs, shard, shards, progress);
+    if (!c.quiet && std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 1.0) std::cerr << "\n";
+    write_outputs(c.out, sweep_description(sweep), rows, shard, shards);
+    if (!c.quiet) {
+      std::cout << fmt::format("{} on {}: {} of {} points -> {}/study.csv, study.json\n", sweep.base.program,
+                               sweep.base.scene, rows.size(), sweep.points().size(), c.out);
+      std::cout << fmt::format("  {:>4} {:>5} {:>6} {:>7} {:>9} {:>9} {:>8} {:>9} {:>9} {:>9} {:>11}\n", "bits", "depth",
+                               "bias8", "levels", "mean err", "max err", "prec b", "lit->sh", "sh->lit", "self-sh",
+                               "step world");
+      for (const StudyRow& r : rows)
+        std::cout << fmt::format("  {:>4} {:>5} {:>6.3g} {:>7} {:>9.5f} {:>9.5f} {:>8.2f} {:>9} {:>9} {:>9} {:>11.3g}\n",
+                                 r.color_bits, r.depth_bits, r.bias_steps8, r.levels, r.mean_abs_error,
+                                 r.max_abs_error, r.precision_bits, r.lit_shadowed, r.shadowed_lit, r.self_shadowed,
+                                 r.depth_step_world);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "\npassim study: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+int merge_command(const std::vector<std::string>& dirs, const std::string& out) {
+  try {
+    std::vector<nlohmann::json> slices;
+    for (const std::string& d : dirs) {
+      const fs::path file = fs::path(d) / "study.json";
+      std::ifstream in(file);
+      if (!in) throw std::runtime_error(fmt::format("cannot read {}", file.string()));
+      try {
+        slices.push_back(nlohmann::json::parse(in));
+      } catch (const std::exception& e) {
+        throw std::runtime_error(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
+      }
+    }
+    nlohmann::json sweep;
+    const std::vector<StudyRow> rows = merge_study(slices, sweep);
+    write_outputs(out, sweep, rows, 0, 1);
+    std::cout << fmt::format("merged {} slices, {} points -> {}/study.csv, study.json\n", slices.size(), rows.size(), out);
+  } catch (const std::exception& e) {
+    std::cerr << "passim merge: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace passim

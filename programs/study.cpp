@@ -1,0 +1,240 @@
+#include "programs/study.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "programs/reference.hpp"
+
+namespace passim {
+
+std::vector<ProgramOptions> StudySweep::points() const {
+  std::vector<ProgramOptions> out;
+  const std::vector<int> maps = map_sizes.empty() ? std::vector<int>{0} : map_sizes;
+  const std::vector<double> bs = biases.empty() ? std::vector<double>{std::numeric_limits<double>::quiet_NaN()} : biases;
+  const std::vector<int> depths = depth_bits.empty() ? std::vector<int>{base.depth_bits} : depth_bits;
+  for (int map : maps)
+    for (double bias8 : bs)
+      for (int depth : depths)
+        for (int bits : color_bits) {
+          ProgramOptions o = base;
+          o.map_size = map;
+          o.depth_bits = depth;
+          o.color_bits = bits;
+          // The bias is a depth, in 8-bit steps of the encoding's range, the same at every
+          // width: 2^(bits − 8) steps of the width (hw-shadow: of its depth plane).
+          if (!std::isnan(bias8))
+            o.bias = bias8 * std::ldexp(1.0, (o.program == "hw-shadow" ? depth : bits) - 8);
+          out.push_back(o);
+        }
+  return out;
+}
+
+namespace {
+
+std::string fnv_text(const std::string& s) {
+  std::vector<std::uint32_t> codes(s.begin(), s.end());
+  return fnv1a_hex(codes, 1);
+}
+
+nlohmann::json sweep_json(const StudySweep& s) {
+  const ProgramOptions& b = s.base;
+  nlohmann::json biases = nlohmann::json::array();
+  for (double v : s.biases) biases.push_back(std::isnan(v) ? nlohmann::json("default") : nlohmann::json(v));
+  return {{"program", b.program}, {"scene", b.scene},         {"profile", b.profile},     {"filter", b.filter},
+          {"depths", b.depths},   {"width", b.width},         {"height", b.height},       {"seed", b.seed},
+          {"color_bits", s.color_bits}, {"depth_bits", s.depth_bits.empty() ? std::vector<int>{b.depth_bits} : s.depth_bits},
+          {"bias_8bit_steps", biases},  {"map_sizes", s.map_sizes}};
+}
+
+}  // namespace
+
+std::string StudySweep::id() const { return fnv_text(sweep_json(*this).dump()); }
+
+StudyRow run_study_point(const ProgramOptions& point, int index) {
+  ProgramSession session(point);
+  session.frame();
+  const ProgramRun run = session.finish();
+  const ProgramOptions& o = run.options;
+  StudyRow row;
+  row.index = index;
+  row.color_bits = o.color_bits;
+  row.depth_bits = o.depth_bits;
+  row.map_size = run.map_size;
+  const bool hw = o.program == "hw-shadow";
+  row.bias_steps8 = o.bias / std::ldexp(1.0, (hw ? o.depth_bits : o.color_bits) - 8);
+  const CapturedImage& att = run.image("attenuation");
+  row.levels = count_levels(att);
+  // Errors against the algorithm without quantisation, over the pixels that see a surface.
+  const std::vector<double> exact = exact_attenuation(run);
+  const double max_code = static_cast<double>((std::uint64_t{1} << att.bits[0]) - 1);
+  double sum_abs = 0.0, sum_sq = 0.0, sum_ref = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (exact[k] < 0.0) continue;
+    const double e = std::abs(static_cast<double>(att.codes[k]) / max_code - exact[k]);
+    sum_abs += e, sum_sq += e * e, sum_ref += exact[k] * exact[k];
+    row.max_abs_error = std::max(row.max_abs_error, e);
+    ++n;
+  }
+  if (n > 0) {
+    row.mean_abs_error = sum_abs / static_cast<double>(n);
+    // −log2 of the relative RMS error; 64 stands for "no error at all".
+    row.precision_bits = sum_sq > 0.0 && sum_ref > 0.0 ? -0.5 * std::log2(sum_sq / sum_ref) : 64.0;
+  }
+  const Classification c = classify(run);
+  row.lit_shadowed = c.lit_shadowed;
+  row.shadowed_lit = c.shadowed_lit;
+  row.self_shadowed = c.self_shadowed;
+  row.surfaces = c.surfaces;
+  const View& light = run.scene.light;
+  if (hw) {
+    // A window-depth step at the receivers' distance d: dz = d²(f − n)/(f·n) / 2^bits.
+    const double d = glm::length(light.center - light.eye), f = light.far_plane, nn = light.near_plane;
+    row.depth_step_world = d * d * (f - nn) / (f * nn) / std::ldexp(1.0, o.depth_bits);
+  } else {
+    row.depth_step_world = (light.far_plane - light.near_plane) / std::ldexp(1.0, o.color_bits);
+  }
+  return row;
+}
+
+std::vector<StudyRow> run_study(const StudySweep& sweep, int jobs, int shard_index, int shard_count,
+                                const std::function<void(int, int)>& progress) {
+  const std::vector<ProgramOptions> points = sweep.points();
+  std::vector<int> mine;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i)
+    if (i % shard_count == shard_index) mine.push_back(i);
+  std::vector<StudyRow> rows(mine.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<int> done{0};
+  std::mutex report;
+  std::exception_ptr failure;
+  auto work = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < mine.size();) {
+      try {
+        rows[k] = run_study_point(points[static_cast<std::size_t>(mine[k])], mine[k]);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(report);
+        if (!failure) failure = std::current_exception();
+        next = mine.size();
+        return;
+      }
+      const int d = ++done;
+      std::lock_guard<std::mutex> lock(report);
+      if (progress) progress(d, static_cast<int>(mine.size()));
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 1; t < std::max(1, jobs); ++t) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return rows;
+}
+
+std::string study_csv(const std::vector<StudyRow>& rows) {
+  std::string out =
+      "index,color_bits,depth_bits,map_size,bias_8bit_steps,levels,mean_abs_error,max_abs_error,precision_bits,"
+      "lit_but_shadowed,shadowed_but_lit,self_shadowed,surfaces,depth_step_world\n";
+  for (const StudyRow& r : rows)
+    out += fmt::format("{},{},{},{},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{:.9g}\n", r.index, r.color_bits,
+                       r.depth_bits, r.map_size, r.bias_steps8, r.levels, r.mean_abs_error, r.max_abs_error,
+                       r.precision_bits, r.lit_shadowed, r.shadowed_lit, r.self_shadowed, r.surfaces,
+                       r.depth_step_world);
+  return out;
+}
+
+namespace {
+
+nlohmann::json row_json(const StudyRow& r) {
+  return {{"index", r.index},
+          {"color_bits", r.color_bits},
+          {"depth_bits", r.depth_bits},
+          {"map_size", r.map_size},
+          {"bias_8bit_steps", r.bias_steps8},
+          {"levels", r.levels},
+          {"mean_abs_error", r.mean_abs_error},
+          {"max_abs_error", r.max_abs_error},
+          {"precision_bits", r.precision_bits},
+          {"lit_but_shadowed", r.lit_shadowed},
+          {"shadowed_but_lit", r.shadowed_lit},
+          {"self_shadowed", r.self_shadowed},
+          {"surfaces", r.surfaces},
+          {"depth_step_world", r.depth_step_world}};
+}
+
+StudyRow row_from_json(const nlohmann::json& j) {
+  StudyRow r;
+  r.index = j.at("index").get<int>();
+  r.color_bits = j.at("color_bits").get<int>();
+  r.depth_bits = j.at("depth_bits").get<int>();
+  r.map_size = j.at("map_size").get<int>();
+  r.bias_steps8 = j.at("bias_8bit_steps").get<double>();
+  r.levels = j.at("levels").get<int>();
+  r.mean_abs_error = j.at("mean_abs_error").get<double>();
+  r.max_abs_error = j.at("max_abs_error").get<double>();
+  r.precision_bits = j.at("precision_bits").get<double>();
+  r.lit_shadowed = j.at("lit_but_shadowed").get<int>();
+  r.shadowed_lit = j.at("shadowed_but_lit").get<int>();
+  r.self_shadowed = j.at("self_shadowed").get<int>();
+  r.surfaces = j.at("surfaces").get<int>();
+  r.depth_step_world = j.at("depth_step_world").get<double>();
+  return r;
+}
+
+}  // namespace
+
+nlohmann::json sweep_description(const StudySweep& sweep) {
+  nlohmann::json s = sweep_json(sweep);
+  s["id"] = sweep.id();
+  s["points"] = sweep.points().size();
+  return s;
+}
+
+nlohmann::json study_json(const nlohmann::json& sweep_description, const std::vector<StudyRow>& rows, int shard_index,
+                          int shard_count) {
+  nlohmann::json out{{"sweep", sweep_description}, {"shard", fmt::format("{}/{}", shard_index + 1, shard_count)}};
+  out["rows"] = nlohmann::json::array();
+  for (const StudyRow& r : rows) out["rows"].push_back(row_json(r));
+  return out;
+}
+
+std::vector<StudyRow> merge_study(const std::vector<nlohmann::json>& slices, nlohmann::json& sweep_out) {
+  if (slices.empty()) throw std::runtime_error("nothing to merge");
+  try {
+    const nlohmann::json& first = slices.front().at("sweep");
+    const std::size_t points = first.at("points").get<std::size_t>();
+    std::vector<StudyRow> rows;
+    std::vector<bool> seen(points, false);
+    for (const nlohmann::json& s : slices) {
+      if (s.at("sweep") != first)
+        throw std::runtime_error(fmt::format("slices of different sweeps (ids {} and {})", first.at("id").dump(),
+                                             s.at("sweep").at("id").dump()));
+      for (const nlohmann::json& j : s.at("rows")) {
+        StudyRow r = row_from_json(j);
+        if (r.index < 0 || static_cast<std::size_t>(r.index) >= points)
+          throw std::runtime_error(fmt::format("point {} is outside the sweep's {} points", r.index, points));
+        if (seen[static_cast<std::size_t>(r.index)])
+          throw std::runtime_error(fmt::format("point {} appears in two slices", r.index));
+        seen[static_cast<std::size_t>(r.index)] = true;
+        rows.push_back(r);
+      }
+    }
+    const auto missing = std::find(seen.begin(), seen.end(), false);
+    if (missing != seen.end())
+      throw std::runtime_error(fmt::format("point {} is in no slice (a shard missing?)", missing - seen.begin()));
+    std::sort(rows.begin(), rows.end(), [](const StudyRow& a, const StudyRow& b) { return a.index < b.index; });
+    sweep_out = first;
+    return rows;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(fmt::format("not a study.json slice: {}", e.what()));
+  }
+}
+
+}  // namespace passim

@@ -1,0 +1,54 @@
+// Precision studies (docs/studies.md): a program run over a sweep of settings, each run
+// measured against the double-precision reference of the same algorithm on the same scene.
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "programs/programs.hpp"
+
+namespace passim {
+
+struct StudySweep {
+  ProgramOptions base;               // program, scene, filter, depths, size ...
+  std::vector<int> color_bits;       // default 4..16
+  std::vector<int> depth_bits;       // default {base.depth_bits}
+  std::vector<double> biases;        // in 8-bit steps of depth; NaN: the program's default
+  std::vector<int> map_sizes;        // 0: the scene's
+  // The sweep's points in a fixed order: bits vary fastest, then depth, bias, map.
+  std::vector<ProgramOptions> points() const;
+  // Identifies the sweep (every setting), so slices of different sweeps are not merged.
+  std::string id() const;
+};
+
+struct StudyRow {
+  int index = 0;  // the point's place in the sweep
+  int color_bits = 0, depth_bits = 0, map_size = 0;
+  double bias_steps8 = 0.0;  // the bias in 8-bit steps of depth
+  int levels = 0;
+  double mean_abs_error = 0.0, max_abs_error = 0.0, precision_bits = 0.0;
+  int lit_shadowed = 0, shadowed_lit = 0, self_shadowed = 0, surfaces = 0;
+  double depth_step_world = 0.0;  // one code of the depth encoding, in world units along the light's axis
+};
+
+// Runs one point of the sweep (deterministic, independent of every other point).
+StudyRow run_study_point(const ProgramOptions& point, int index);
+
+// Runs the points with index % shard_count == shard_index (all when shard_count = 1) on
+// `jobs` threads; rows come back in sweep order whatever the thread count. `progress`
+// is called after each finished point (from one thread at a time).
+std::vector<StudyRow> run_study(const StudySweep& sweep, int jobs, int shard_index, int shard_count,
+                                const std::function<void(int done, int total)>& progress = {});
+
+// The files' contents: CSV (one row per point, a header) and JSON (sweep + rows).
+std::string study_csv(const std::vector<StudyRow>& rows);
+// The sweep's description (its settings, id and number of points), as study.json holds it.
+nlohmann::json sweep_description(const StudySweep& sweep);
+nlohmann::json study_json(const nlohmann::json& sweep_description, const std::vector<StudyRow>& rows, int shard_index,
+                          int shard_count);
+// Joins slices (their study.json documents): the same sweep, every point once. Throws
+// std::runtime_error naming the problem.
+std::vector<StudyRow> merge_study(const std::vector<nlohmann::json>& slices, nlohmann::json& sweep_out);
+
+}  // namespace passim
