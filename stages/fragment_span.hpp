@@ -23,9 +23,10 @@ struct FragmentSpan {
 
 // Storage for one span of up to `max_width` fragments.
 struct SpanBuffers {
+  // rgba and depth have room past max_width for the padded span kernels (span_kernels.hpp).
   explicit SpanBuffers(int max_width)
-      : rgba(4 * static_cast<std::size_t>(max_width)),
-        depth(max_width),
+      : rgba(4 * static_cast<std::size_t>(max_width + 4)),
+        depth(static_cast<std::size_t>(max_width + 4)),
         live(max_width),
         s(max_width),
         t(max_width),

@@ -207,15 +207,16 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
     if (target.depth_bits == 0) {
       std::fill(span.depth, span.depth + n, 0u);
     } else {
-      depth_codes(SpanPlane{z_plane.at_row(cy, setup.y0), z_plane.dfdx}, offset, x0, setup.x0, n, depth_scale,
-                  span.depth);
+      depth_codes_padded(SpanPlane{z_plane.at_row(cy, setup.y0), z_plane.dfdx}, offset, x0, setup.x0, n, depth_scale,
+                         span.depth);
     }
     if (constant) {
       for (int i = 0; i < n; ++i) std::memcpy(span.rgba + 4 * i, constant_codes, sizeof(constant_codes));
     } else {
       SpanPlane c[4];
       for (int k = 0; k < 4; ++k) c[k] = SpanPlane{c_plane[k].at_row(cy, setup.y0), c_plane[k].dfdx};
-      color_codes(SpanPlane{q_plane.at_row(cy, setup.y0), q_plane.dfdx}, c, color_scale, x0, setup.x0, n, span.rgba);
+      color_codes_padded(SpanPlane{q_plane.at_row(cy, setup.y0), q_plane.dfdx}, c, color_scale, x0, setup.x0, n,
+                         span.rgba);
     }
     if (options.texcoords) texture_coordinates(tex_plane, setup, cy, x0, n, options, span);
     if (options.fog) {

@@ -41,8 +41,11 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
 namespace {
 // AVX2: four fragments at a time, the same operations as the scalar reference (no FMA:
 // each multiply and add is its own instruction, and -ffp-contract=off forbids fusing them).
+// `padded`: the last group of four is computed whole even past n (the caller's buffer
+// has room); lanes are independent, so the first n codes are the same.
 __attribute__((target("avx2"))) void color_codes_avx2(const SpanPlane& q, const SpanPlane c[4], const double scale[4],
-                                                      int x0, double x_ref, int n, std::uint16_t* out) {
+                                                      int x0, double x_ref, int n, std::uint16_t* out,
+                                                      bool padded = false) {
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
   const __m256d q_row = _mm256_set1_pd(q.row), q_d = _mm256_set1_pd(q.d_dx);
   const __m256d ref = _mm256_set1_pd(x_ref);
@@ -54,7 +57,7 @@ __attribute__((target("avx2"))) void color_codes_avx2(const SpanPlane& q, const 
   }
   const __m128i bias = _mm_set1_epi32(32768), flip = _mm_set1_epi16(static_cast<short>(0x8000));
   int i = 0;
-  for (; i + 4 <= n; i += 4) {
+  for (; padded ? i < n : i + 4 <= n; i += 4) {
     const __m256d xs = _mm256_cvtepi32_pd(_mm_setr_epi32(x0 + i, x0 + i + 1, x0 + i + 2, x0 + i + 3));
     const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
     const __m256d inv_q = _mm256_div_pd(one, _mm256_add_pd(q_row, _mm256_mul_pd(q_d, dx)));
@@ -74,23 +77,23 @@ __attribute__((target("avx2"))) void color_codes_avx2(const SpanPlane& q, const 
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i), _mm_xor_si128(_mm_packs_epi32(f0, f1), flip));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * i + 8), _mm_xor_si128(_mm_packs_epi32(f2, f3), flip));
   }
-  color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
+  if (!padded) color_codes_scalar(q, c, scale, x0 + i, x_ref, n - i, out + 4 * i);
 }
 
 __attribute__((target("avx2"))) void depth_codes_avx2(const SpanPlane& z, double offset, int x0, double x_ref, int n,
-                                                      double scale, std::uint32_t* out) {
+                                                      double scale, std::uint32_t* out, bool padded = false) {
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
   const __m256d row = _mm256_set1_pd(z.row), d = _mm256_set1_pd(z.d_dx), off = _mm256_set1_pd(offset);
   const __m256d s = _mm256_set1_pd(scale), ref = _mm256_set1_pd(x_ref);
   int i = 0;
-  for (; i + 4 <= n; i += 4) {
+  for (; padded ? i < n : i + 4 <= n; i += 4) {
     const __m256d xs = _mm256_cvtepi32_pd(_mm_setr_epi32(x0 + i, x0 + i + 1, x0 + i + 2, x0 + i + 3));
     const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
     __m256d v = _mm256_add_pd(_mm256_add_pd(row, _mm256_mul_pd(d, dx)), off);
     v = _mm256_min_pd(_mm256_max_pd(v, zero), one);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(v, s), half)));
   }
-  depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
+  if (!padded) depth_codes_scalar(z, offset, x0 + i, x_ref, n - i, scale, out + i);
 }
 }  // namespace
 bool depth_codes_has_avx2() { return __builtin_cpu_supports("avx2"); }
@@ -104,7 +107,27 @@ void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double sca
                       std::uint16_t* out) {
   color_codes_avx2(q, c, scale, x0, x_ref, n, out);
 }
+void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                        std::uint32_t* out) {
+  static const bool avx2 = depth_codes_has_avx2();
+  if (!avx2 || scale >= 2147483647.0) return depth_codes(z, offset, x0, x_ref, n, scale, out);
+  depth_codes_avx2(z, offset, x0, x_ref, n, scale, out, true);
+}
+void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                        std::uint16_t* out) {
+  static const bool avx2 = color_codes_has_avx2();
+  if (!avx2) return color_codes(q, c, scale, x0, x_ref, n, out);
+  color_codes_avx2(q, c, scale, x0, x_ref, n, out, true);
+}
 #else
+void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                        std::uint32_t* out) {
+  depth_codes(z, offset, x0, x_ref, n, scale, out);
+}
+void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                        std::uint16_t* out) {
+  color_codes(q, c, scale, x0, x_ref, n, out);
+}
 bool color_codes_has_avx2() { return false; }
 void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                       std::uint16_t* out) {

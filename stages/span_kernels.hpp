@@ -24,6 +24,14 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
 void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                  std::uint16_t* out);
 
+// The same for a caller whose buffers have room for n rounded up to a multiple of 4
+// (out[n .. n+3] may be written with values of the pixels past the span): no scalar tail.
+inline constexpr int kSpanPadding = 4;
+void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
+                        std::uint32_t* out);
+void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
+                        std::uint16_t* out);
+
 // The AVX2 kernel (four fragments at a time) used by color_codes when the processor has
 // AVX2; exposed so the tests can compare it with the scalar reference directly.
 bool color_codes_has_avx2();

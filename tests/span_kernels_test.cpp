@@ -31,6 +31,10 @@ TEST(SpanKernels, DepthCodesMatchTheScalarReference) {
         depth_codes_wide(z, offset, x0, 17.3125, n, scale, w.data());
         ASSERT_EQ(a, w) << "AVX2, bits " << bits << " trial " << trial;
       }
+      std::vector<std::uint32_t> p(static_cast<std::size_t>(n + kSpanPadding));
+      depth_codes_padded(z, offset, x0, 17.3125, n, scale, p.data());
+      p.resize(static_cast<std::size_t>(n));
+      ASSERT_EQ(a, p) << "padded, bits " << bits << " trial " << trial;
     }
   }
 }
@@ -56,6 +60,10 @@ TEST(SpanKernels, ColorCodesMatchTheScalarReference) {
         color_codes_wide(qp, c, scale, x0, 3.0625, n, w.data());
         ASSERT_EQ(a, w) << "AVX2, bits " << bits << " trial " << trial;
       }
+      std::vector<std::uint16_t> p(static_cast<std::size_t>(4 * (n + kSpanPadding)));
+      color_codes_padded(qp, c, scale, x0, 3.0625, n, p.data());
+      p.resize(static_cast<std::size_t>(4 * n));
+      ASSERT_EQ(a, p) << "padded, bits " << bits << " trial " << trial;
     }
   }
 }
