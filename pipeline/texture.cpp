@@ -68,34 +68,41 @@ std::optional<InternalFormat> internal_format(GLint f, int u) {
   }
 }
 
+namespace {
+
+// One texel's components as the reals k/(2^bits − 1) sampling reads (Table 3.18 sources).
+void decode_texel(const InternalFormat& f, const std::uint32_t* t, double* o) {
+  auto v = [](std::uint32_t k, int bits) { return fixed_to_float(k, bits); };
+  switch (f.base) {
+    case GL_ALPHA: o[0] = o[1] = o[2] = 0.0; o[3] = v(t[3], f.alpha); break;
+    case GL_LUMINANCE: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = 1.0; break;
+    case GL_LUMINANCE_ALPHA: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = v(t[3], f.alpha); break;
+    case GL_INTENSITY: o[0] = o[1] = o[2] = o[3] = v(t[0], f.intensity); break;
+    case GL_DEPTH_COMPONENT: o[0] = o[1] = o[2] = o[3] = v(t[0], f.depth); break;
+    case GL_RGB: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = 1.0; break;
+    default: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = v(t[3], f.alpha); break;
+  }
+}
+
+}  // namespace
+
 const std::vector<double>& TextureLevel::values() const {
   if (!decoded.empty() || texels.empty()) return decoded;
   decoded.resize(texels.size());
-  const InternalFormat& f = format;
-  for (std::size_t p = 0; p < texels.size(); p += 4) {
-    const std::uint32_t* t = &texels[p];
-    double* o = &decoded[p];
-    auto v = [](std::uint32_t k, int bits) { return fixed_to_float(k, bits); };
-    switch (f.base) {
-      case GL_ALPHA: o[0] = o[1] = o[2] = 0.0; o[3] = v(t[3], f.alpha); break;
-      case GL_LUMINANCE: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = 1.0; break;
-      case GL_LUMINANCE_ALPHA: o[0] = o[1] = o[2] = v(t[0], f.luminance); o[3] = v(t[3], f.alpha); break;
-      case GL_INTENSITY: o[0] = o[1] = o[2] = o[3] = v(t[0], f.intensity); break;
-      case GL_DEPTH_COMPONENT: o[0] = o[1] = o[2] = o[3] = v(t[0], f.depth); break;
-      case GL_RGB: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = 1.0; break;
-      default: o[0] = v(t[0], f.red); o[1] = v(t[1], f.green); o[2] = v(t[2], f.blue); o[3] = v(t[3], f.alpha); break;
-    }
-  }
+  for (std::size_t p = 0; p < texels.size(); p += 4) decode_texel(format, &texels[p], &decoded[p]);
   return decoded;
 }
 
 const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4>& bits) const {
   if (!replace_codes.empty() && replace_codes_bits == bits) return replace_codes;
-  const std::vector<double>& v = values();
-  replace_codes.resize(v.size());
+  // Straight from the texels (the same reals values() would hold, without keeping them).
+  replace_codes.resize(texels.size());
   replace_codes_bits = bits;
-  for (std::size_t p = 0; p < v.size(); ++p)
-    replace_codes[p] = static_cast<std::uint16_t>(float_to_fixed(v[p], bits[p % 4]));
+  for (std::size_t p = 0; p < texels.size(); p += 4) {
+    double o[4];
+    decode_texel(format, &texels[p], o);
+    for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = static_cast<std::uint16_t>(float_to_fixed(o[k], bits[k]));
+  }
   return replace_codes;
 }
 
