@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "pipeline/image_io.hpp"
+#include "programs/plot.hpp"
 
 namespace fs = std::filesystem;
 
@@ -57,11 +58,72 @@ std::vector<double> double_list(const std::string& text, const char* what) {
   return out;
 }
 
+// The plots (docs/studies.md): metrics against the colour width, one series per other
+// setting; self-shadowing against the bias, one series per width.
+void write_plots(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows) {
+  const std::string what = fmt::format("{} {}x{} on {}", sweep.at("program").get<std::string>(),
+                                       sweep.at("filter").get<int>(), sweep.at("filter").get<int>(),
+                                       sweep.at("scene").get<std::string>());
+  // A series per combination of the other settings, named by those that vary.
+  auto varies = [&](auto&& field) {
+    return std::any_of(rows.begin(), rows.end(), [&](const StudyRow& r) { return field(r) != field(rows.front()); });
+  };
+  const bool depth_varies = varies([](const StudyRow& r) { return static_cast<double>(r.depth_bits); });
+  const bool bias_varies = varies([](const StudyRow& r) { return r.bias_steps8; });
+  const bool map_varies = varies([](const StudyRow& r) { return static_cast<double>(r.map_size); });
+  auto group_name = [&](const StudyRow& r) {
+    std::string name;
+    if (depth_varies) name += fmt::format("depth {} ", r.depth_bits);
+    if (bias_varies) name += fmt::format("bias {:g} ", r.bias_steps8);
+    if (map_varies) name += fmt::format("map {} ", r.map_size);
+    return name.empty() ? std::string("all") : name.substr(0, name.size() - 1);
+  };
+  auto by_bits = [&](const std::string& title, const std::string& y_label, bool log_y, auto&& value,
+                     const std::string& file) {
+    PlotSpec plot{fmt::format("{}: {}", what, title), "colour bits", y_label, log_y, {}};
+    for (const StudyRow& r : rows) {
+      const std::string name = group_name(r);
+      auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const PlotSeries& p) { return p.name == name; });
+      if (it == plot.series.end()) it = plot.series.insert(plot.series.end(), PlotSeries{name, {}, {}});
+      it->x.push_back(r.color_bits);
+      it->y.push_back(value(r));
+    }
+    write_plot(out / file, plot);
+  };
+  by_bits("mean absolute attenuation error", "error", true, [](const StudyRow& r) { return r.mean_abs_error; },
+          "error_vs_bits.png");
+  by_bits("precision (−log2 relative RMS error)", "bits", false, [](const StudyRow& r) { return r.precision_bits; },
+          "precision_vs_bits.png");
+  by_bits("shadow levels", "levels", false, [](const StudyRow& r) { return static_cast<double>(r.levels); },
+          "levels_vs_bits.png");
+  by_bits("misclassified pixels (lit but shadowed + shadowed but lit)", "pixels", false,
+          [](const StudyRow& r) { return static_cast<double>(r.lit_shadowed + r.shadowed_lit); },
+          "misclassified_vs_bits.png");
+  std::vector<double> biases;
+  for (const StudyRow& r : rows)
+    if (std::find(biases.begin(), biases.end(), r.bias_steps8) == biases.end()) biases.push_back(r.bias_steps8);
+  if (biases.size() > 1) {
+    PlotSpec plot{fmt::format("{}: self-shadowing against the bias", what), "bias (8-bit steps of depth)",
+                  "self-shadowed pixels", false, {}};
+    for (const StudyRow& r : rows) {
+      std::string name = fmt::format("{} bits", r.color_bits);
+      if (depth_varies) name += fmt::format(", depth {}", r.depth_bits);
+      if (map_varies) name += fmt::format(", map {}", r.map_size);
+      auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const PlotSeries& p) { return p.name == name; });
+      if (it == plot.series.end()) it = plot.series.insert(plot.series.end(), PlotSeries{name, {}, {}});
+      it->x.push_back(r.bias_steps8);
+      it->y.push_back(r.self_shadowed);
+    }
+    write_plot(out / "self_shadowing_vs_bias.png", plot);
+  }
+}
+
 void write_outputs(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows, int shard,
                    int shards) {
   fs::create_directories(out);
   write_text_file(out / "study.csv", study_csv(rows));
   write_text_file(out / "study.json", study_json(sweep, rows, shard, shards).dump(1) + "\n");
+  if (shards == 1) write_plots(out, sweep, rows);  // a slice plots nothing: merge does
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages passim builds with, if any is missing.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgl-dev libglm-dev libopenimageio-dev libcli11-dev
-          nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev)
+          nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,24 @@
+// Line charts as PNG (OpenImageIO's line and text rendering), for the studies' plots.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace passim {
+
+struct PlotSeries {
+  std::string name;
+  std::vector<double> x, y;
+};
+
+struct PlotSpec {
+  std::string title, x_label, y_label;
+  bool log_y = false;  // logarithmic y axis (values <= 0 are left out)
+  std::vector<PlotSeries> series;
+};
+
+// Writes an 8-bit RGB PNG (temporary file + rename). Labels need the DejaVu font
+// (Debian's fonts-dejavu-core); without it the chart is drawn unlabelled.
+void write_plot(const std::filesystem::path& file, const PlotSpec& plot, int width = 800, int height = 440);
+
+}  // namespace passim
