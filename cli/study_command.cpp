@@ -121,9 +121,20 @@ void write_plots(const fs::path& out, const nlohmann::json& sweep, const std::ve
 void write_outputs(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows, int shard,
                    int shards) {
   fs::create_directories(out);
+  for (const StudyRow& r : rows)
+    if (!r.edge.codes.empty()) write_image(r.edge, out);
   write_text_file(out / "study.csv", study_csv(rows));
   write_text_file(out / "study.json", study_json(sweep, rows, shard, shards).dump(1) + "\n");
-  if (shards == 1) write_plots(out, sweep, rows);  // a slice plots nothing: merge does
+  if (shards == 1) {  // a slice plots nothing: merge does
+    write_plots(out, sweep, rows);
+    std::vector<fs::path> edges;
+    std::vector<std::string> labels;
+    for (const StudyRow& r : rows) {
+      edges.push_back(out / fmt::format("edge-{}.png", r.index));
+      labels.push_back(fmt::format("{} bits", r.color_bits));
+    }
+    write_strip(out / "edge_strip.png", edges, labels);
+  }
 }
 
 }  // namespace
@@ -203,6 +214,13 @@ int merge_command(const std::vector<std::string>& dirs, const std::string& out) 
     }
     nlohmann::json sweep;
     const std::vector<StudyRow> rows = merge_study(slices, sweep);
+    // The slices' edge images come along (the strip is made from them).
+    fs::create_directories(out);
+    for (const std::string& d : dirs)
+      for (const StudyRow& r : rows) {
+        const fs::path edge = fs::path(d) / fmt::format("edge-{}.png", r.index);
+        if (fs::exists(edge)) fs::copy_file(edge, fs::path(out) / edge.filename(), fs::copy_options::overwrite_existing);
+      }
     write_outputs(out, sweep, rows, 0, 1);
     std::cout << fmt::format("merged {} slices, {} points -> {}/study.csv, study.json\n", slices.size(), rows.size(), out);
   } catch (const std::exception& e) {

@@ -32,6 +32,56 @@ double tick_step(double lo, double hi, int count) {
 
 }  // namespace
 
+namespace {
+
+// An 8-bit RGB image buffer out through the project's atomic image writer.
+void write_buffer(const std::filesystem::path& file, const OIIO::ImageBuf& buf) {
+  const int width = buf.spec().width, height = buf.spec().height;
+  CapturedImage img;
+  img.name = file.stem().string();
+  img.plane = "rgb";
+  img.width = width;
+  img.height = height;
+  img.channels = 3;
+  img.bits = {8, 8, 8, 0};
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  buf.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::UINT8, pixels.data());
+  img.codes.resize(pixels.size());
+  const std::size_t row = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y)  // CapturedImage rows are bottom first
+    std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row), row,
+                img.codes.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row));
+  write_image(img, file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+}
+
+}  // namespace
+
+void write_strip(const std::filesystem::path& file, const std::vector<std::filesystem::path>& images,
+                 const std::vector<std::string>& labels) {
+  using namespace OIIO;
+  std::vector<ImageBuf> cells;
+  int width = 0, height = 0;
+  for (const auto& path : images) {
+    ImageBuf b(path.string());
+    if (!b.read(0, 0, 0, 3, true, TypeDesc::UINT8))
+      throw std::runtime_error(fmt::format("cannot read {}: {}", path.string(), b.geterror()));
+    width += b.spec().width + (cells.empty() ? 0 : 4);
+    height = std::max(height, b.spec().height);
+    cells.push_back(std::move(b));
+  }
+  ImageBuf strip(ImageSpec(std::max(1, width), height + 24, 3, TypeDesc::UINT8));
+  ImageBufAlgo::fill(strip, {1.0f, 1.0f, 1.0f});
+  int x = 0;
+  bool text_ok = true;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    ImageBufAlgo::paste(strip, x, 0, 0, 0, cells[k]);
+    if (text_ok && k < labels.size())
+      text_ok = ImageBufAlgo::render_text(strip, x + 4, height + 18, labels[k], 14, kFont, {0.1f, 0.1f, 0.1f});
+    x += cells[k].spec().width + 4;
+  }
+  write_buffer(file, strip);
+}
+
 void write_plot(const std::filesystem::path& file, const PlotSpec& plot, int width, int height) {
   // Room on the right for the legend.
   using namespace OIIO;
@@ -114,22 +164,7 @@ void write_plot(const std::filesystem::path& file, const PlotSpec& plot, int wid
   text((left + right) / 2, 22, plot.title, 16, true);
   text((left + right) / 2, height - 15, plot.x_label, 14, true);
   text(8, top - 10, plot.y_label, 14);
-  // Out through the project's atomic image writer.
-  CapturedImage img;
-  img.name = file.stem().string();
-  img.plane = "rgb";
-  img.width = width;
-  img.height = height;
-  img.channels = 3;
-  img.bits = {8, 8, 8, 0};
-  img.codes.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
-  std::vector<std::uint8_t> pixels(img.codes.size());
-  buf.get_pixels(ROI(0, width, 0, height, 0, 1, 0, 3), TypeDesc::UINT8, pixels.data());
-  for (int y = 0; y < height; ++y)  // CapturedImage rows are bottom first
-    for (int x = 0; x < width * 3; ++x)
-      img.codes[static_cast<std::size_t>(height - 1 - y) * static_cast<std::size_t>(width) * 3 + static_cast<std::size_t>(x)] =
-          pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 3 + static_cast<std::size_t>(x)];
-  write_image(img, file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+  write_buffer(file, buf);
 }
 
 }  // namespace passim

@@ -21,4 +21,9 @@ struct PlotSpec {
 // (Debian's fonts-dejavu-core); without it the chart is drawn unlabelled.
 void write_plot(const std::filesystem::path& file, const PlotSpec& plot, int width = 800, int height = 440);
 
+// Joins PNG images side by side (4 pixels apart, tops aligned), each labelled below,
+// into one 8-bit RGB PNG. Throws std::runtime_error when an image cannot be read.
+void write_strip(const std::filesystem::path& file, const std::vector<std::filesystem::path>& images,
+                 const std::vector<std::string>& labels);
+
 }  // namespace passim

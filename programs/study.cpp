@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "pipeline/fixed_point.hpp"
 #include "programs/reference.hpp"
 
 namespace passim {
@@ -87,6 +88,30 @@ StudyRow run_study_point(const ProgramOptions& point, int index) {
     row.mean_abs_error = sum_abs / static_cast<double>(n);
     // −log2 of the relative RMS error; 64 stands for "no error at all".
     row.precision_bits = sum_sq > 0.0 && sum_ref > 0.0 ? -0.5 * std::log2(sum_sq / sum_ref) : 64.0;
+  }
+  // The edge strip's cell: the final image's region of Figure 7's inset (scaled to the
+  // image size), each pixel 4x4, at 8 bits.
+  {
+    const CapturedImage& fin = run.image("final");
+    const int w = std::max(1, fin.width / 8), h = std::max(1, fin.height / 8), mag = 4;
+    const int x0 = fin.width * 250 / 800, y0 = fin.height * 210 / 600;
+    CapturedImage& e = row.edge;
+    e.name = fmt::format("edge-{}", index);
+    e.plane = "rgb";
+    e.width = w * mag;
+    e.height = h * mag;
+    e.channels = 3;
+    e.bits = {8, 8, 8, 0};
+    e.codes.resize(static_cast<std::size_t>(e.width) * static_cast<std::size_t>(e.height) * 3);
+    for (int y = 0; y < e.height; ++y)
+      for (int x = 0; x < e.width; ++x)
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t src = (static_cast<std::size_t>(y0 + y / mag) * static_cast<std::size_t>(fin.width) +
+                                   static_cast<std::size_t>(x0 + x / mag)) * 3 + static_cast<std::size_t>(k);
+          e.codes[(static_cast<std::size_t>(y) * static_cast<std::size_t>(e.width) + static_cast<std::size_t>(x)) * 3 +
+                  static_cast<std::size_t>(k)] = rescale_code(fin.codes[src], fin.bits[static_cast<std::size_t>(k)], 8);
+        }
+    e.hash = fnv1a_hex(e.codes, 1);
   }
   const Classification c = classify(run);
   row.lit_shadowed = c.lit_shadowed;

@@ -30,6 +30,7 @@ struct StudyRow {
   double mean_abs_error = 0.0, max_abs_error = 0.0, precision_bits = 0.0;
   int lit_shadowed = 0, shadowed_lit = 0, self_shadowed = 0, surfaces = 0;
   double depth_step_world = 0.0;  // one code of the depth encoding, in world units along the light's axis
+  CapturedImage edge;  // a shadow edge of the final image, magnified 4x, 8-bit RGB (not in the tables)
 };
 
 // Runs one point of the sweep (deterministic, independent of every other point).
