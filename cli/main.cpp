@@ -404,6 +404,22 @@ int main(int argc, char** argv) {
   precision->add_option("--shard", sc.shard, "Run slice i of n (i/n); passim merge joins the slices")->capture_default_str();
   precision->add_option("--out,-o", sc.out, "Output directory")->capture_default_str();
   precision->add_flag("--quiet,-q", sc.quiet, "No table, no progress line");
+  auto* provenance = study->add_subcommand(
+      "provenance", "Which stage first loses information: the run, then one stage at a time widened to its widest");
+  StudyCommand pvc;
+  pvc.size = "800x600";
+  provenance->add_option("--program", pvc.base.program, "The program (passim program --list)")->required();
+  provenance->add_option("--filter", pvc.filter, "Its footprint NxN");
+  provenance->add_option("--depths", pvc.base.depths, "mdsm: depths per cell")->capture_default_str();
+  provenance->add_option("--scene", pvc.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
+  provenance->add_option("--size", pvc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
+  provenance->add_option("--bits", pvc.base.color_bits, "Colour width")->capture_default_str();
+  provenance->add_option("--texture-bits", pvc.base.texture_bits, "Texture internal formats: 4, 8, 12, 16 (0: as the colour)")
+      ->capture_default_str();
+  provenance->add_option("--table-bits", pvc.base.table_bits, "Colour table format: 4, 8, 12, 16 (0: as the colour)")
+      ->capture_default_str();
+  provenance->add_option("--accum-bits", pvc.base.accum_bits, "Accumulation width (0: the default)")->capture_default_str();
+  provenance->add_option("--profile", pvc.base.profile, "Machine profile")->capture_default_str();
   auto* merge = app.add_subcommand("merge", "Join sharded study outputs into the files an unsharded run writes");
   std::vector<std::string> merge_dirs;
   std::string merge_out = "study";
@@ -423,6 +439,7 @@ int main(int argc, char** argv) {
   if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
+  if (*provenance) return provenance_command(pvc);
   if (*merge) return merge_command(merge_dirs, merge_out);
   if (*cost) {
     cc.program_given = cost->count("--program") > 0;

@@ -14,6 +14,7 @@ struct StudyCommand {
   bool quiet = false;
 };
 int study_command(const StudyCommand& command);
+int provenance_command(const StudyCommand& command);
 int merge_command(const std::vector<std::string>& dirs, const std::string& out);
 
 }  // namespace passim

@@ -100,6 +100,8 @@ class Program {
   Program(ProgramRun& run, Context& gl, TraceWriter* writer)
       : run_(run), o_(run.options), gl_(gl), writer_(writer), scene_(run.scene) {
     bits_ = o_.color_bits;
+    texture_bits_ = o_.texture_bits > 0 ? o_.texture_bits : bits_;
+    table_bits_ = o_.table_bits > 0 ? o_.table_bits : bits_;
     max_code_ = (1 << bits_) - 1;
     map_ = run.map_size;
     width_ = o_.width;
@@ -162,7 +164,7 @@ class Program {
     for (int i = 0; i < n; ++i) texels[static_cast<std::size_t>(i)] = static_cast<float>(static_cast<double>(i) / max_code_);
     gl_.glGenTextures(1, &ramp_);
     gl_.glBindTexture(GL_TEXTURE_1D, ramp_);
-    gl_.glTexImage1D(GL_TEXTURE_1D, 0, static_cast<GLint>(intensity_format(bits_)), n, 0, GL_LUMINANCE, GL_FLOAT,
+    gl_.glTexImage1D(GL_TEXTURE_1D, 0, static_cast<GLint>(intensity_format(texture_bits_)), n, 0, GL_LUMINANCE, GL_FLOAT,
                      texels.data());
     gl_.glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl_.glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -381,7 +383,7 @@ class Program {
     for (int i = 1; i < n; ++i)
       for (int c = 0; c < k; ++c)
         table[static_cast<std::size_t>(4 * i + c)] = static_cast<float>(static_cast<double>(shares[static_cast<std::size_t>(c)]) / max_code_);
-    gl_.glColorTable(GL_COLOR_TABLE, rgba_format(bits_), n, GL_RGBA, GL_FLOAT, table.data());
+    gl_.glColorTable(GL_COLOR_TABLE, rgba_format(table_bits_), n, GL_RGBA, GL_FLOAT, table.data());
     gl_.glEnable(GL_COLOR_TABLE);
     const GLdouble sum_all[16] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
     gl_.glMatrixMode(GL_COLOR);
@@ -416,7 +418,7 @@ class Program {
     run_.samples.push_back({0, 0, 0.5, 0.5});
     light_ramp_pass("shadow map", 0.0, 0.0, true);
     capture("shadowmap", "color", map_, map_, false);
-    const GLuint map = copy_map_to_texture(intensity_format(bits_), "copy to texture");
+    const GLuint map = copy_map_to_texture(intensity_format(texture_bits_), "copy to texture");
     camera_ramp_pass();
     shadow_test_pass(map, 0.0, 0.0);
     threshold_copy();
@@ -438,7 +440,7 @@ class Program {
         light_ramp_pass(fmt::format("shadow map {} {}", m, channel_names[c]), 0.5 - dx, 0.5 - dy, c == 0, c);
       }
       capture(maps == 1 ? "shadowmap" : fmt::format("shadowmap{}", m), "color", map_, map_, false);
-      textures.push_back(copy_map_to_texture(rgba_format(bits_), "copy to texture"));
+      textures.push_back(copy_map_to_texture(rgba_format(texture_bits_), "copy to texture"));
     }
     for (int m = 0; m < maps; ++m) {
       const int k = std::min(4, strata - 4 * m);
@@ -472,7 +474,7 @@ class Program {
       gl_.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, kernel.data());
       gl_.glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
       gl_.glEnable(GL_CONVOLUTION_2D);
-      textures.push_back(copy_map_to_texture(rgba_format(bits_), "copy to texture (packing convolution)"));
+      textures.push_back(copy_map_to_texture(rgba_format(texture_bits_), "copy to texture (packing convolution)"));
       gl_.glDisable(GL_CONVOLUTION_2D);
     }
     for (int c = 0; c < 4; ++c)  // the packed texel's samples, relative to the lookup texel
@@ -519,7 +521,7 @@ class Program {
     if (n >= 2) neighbourhood(GL_MAX, 1, "maximum depths");
     if (n >= 3) neighbourhood(GL_MIN, 2, "minimum depths");
     capture("shadowmap", "color", map_, map_, false);
-    const GLuint map = copy_map_to_texture(rgba_format(bits_), "copy to texture");
+    const GLuint map = copy_map_to_texture(rgba_format(texture_bits_), "copy to texture");
     run_.samples.push_back({0, 0, 0.5, 0.5});
     for (int j = 0; j < side; ++j)
       for (int i = 0; i < side; ++i) {
@@ -607,7 +609,7 @@ class Program {
   Context& gl_;
   TraceWriter* writer_;  // null when not recording
   const Scene& scene_;
-  int bits_ = 8, max_code_ = 255, map_ = 512, width_ = 800, height_ = 600;
+  int bits_ = 8, texture_bits_ = 8, table_bits_ = 8, max_code_ = 255, map_ = 512, width_ = 800, height_ = 600;
   GLuint scene_list_ = 0, ramp_ = 0;
   std::map<std::string, int> captures_;
   std::vector<GLuint> frame_textures_;
@@ -626,6 +628,9 @@ void validate(ProgramOptions& o, const MachineProfile& profile, int map) {
   if (o.color_bits < 4 || o.color_bits > 16)
     throw ProgramError(fmt::format("--bits {}: the programs run at colour widths 4 to 16", o.color_bits));
   if (o.depth_bits < 1 || o.depth_bits > 32) throw ProgramError(fmt::format("--depth-bits {}: 1 to 32", o.depth_bits));
+  for (const auto& [value, what] : {std::pair{o.texture_bits, "--texture-bits"}, std::pair{o.table_bits, "--table-bits"}})
+    if (value != 0 && value != 4 && value != 8 && value != 12 && value != 16)
+      throw ProgramError(fmt::format("{} {}: a sized internal format, 4, 8, 12 or 16", what, value));
   if (o.width < 1 || o.height < 1 || o.width > l.max_framebuffer_size || o.height > l.max_framebuffer_size)
     throw ProgramError(fmt::format("--size {}x{}: each side must be 1 to {} (profile {}, largest framebuffer)", o.width,
                                    o.height, l.max_framebuffer_size, profile.name));

@@ -39,6 +39,10 @@ struct ProgramOptions {
   bool jitter = true;    // pcf: jitter each stratum's sample (else the strata's centres)
   std::uint32_t seed = 1;
   bool intermediates = false;  // also capture every intermediate buffer
+  // Internal formats (4, 8, 12 or 16 bits; 0: the smallest sized format holding the colour
+  // width): of the ramp and shadow-map textures, and of the counting colour table.
+  int texture_bits = 0;
+  int table_bits = 0;
   std::string sampling = "jittered";  // reeves: random, gaussian or jittered (Reeves et al. (a), (b), (c))
 };
 

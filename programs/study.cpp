@@ -58,6 +58,29 @@ nlohmann::json sweep_json(const StudySweep& s) {
 
 std::string StudySweep::id() const { return fnv_text(sweep_json(*this).dump()); }
 
+AttenuationError attenuation_error(const ProgramRun& run) {
+  // Errors against the algorithm without quantisation, over the pixels that see a surface.
+  const CapturedImage& att = run.image("attenuation");
+  const std::vector<double> exact = exact_attenuation(run);
+  const double max_code = static_cast<double>((std::uint64_t{1} << att.bits[0]) - 1);
+  AttenuationError r;
+  double sum_abs = 0.0, sum_sq = 0.0, sum_ref = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (exact[k] < 0.0) continue;
+    const double e = std::abs(static_cast<double>(att.codes[k]) / max_code - exact[k]);
+    sum_abs += e, sum_sq += e * e, sum_ref += exact[k] * exact[k];
+    r.max_abs = std::max(r.max_abs, e);
+    ++n;
+  }
+  if (n > 0) {
+    r.mean_abs = sum_abs / static_cast<double>(n);
+    // −log2 of the relative RMS error; 64 stands for "no error at all".
+    r.precision_bits = sum_sq > 0.0 && sum_ref > 0.0 ? -0.5 * std::log2(sum_sq / sum_ref) : 64.0;
+  }
+  return r;
+}
+
 StudyRow run_study_point(const ProgramOptions& point, int index) {
   ProgramSession session(point);
   session.frame();
@@ -72,23 +95,10 @@ StudyRow run_study_point(const ProgramOptions& point, int index) {
   row.bias_steps8 = o.bias / std::ldexp(1.0, (hw ? o.depth_bits : o.color_bits) - 8);
   const CapturedImage& att = run.image("attenuation");
   row.levels = count_levels(att);
-  // Errors against the algorithm without quantisation, over the pixels that see a surface.
-  const std::vector<double> exact = exact_attenuation(run);
-  const double max_code = static_cast<double>((std::uint64_t{1} << att.bits[0]) - 1);
-  double sum_abs = 0.0, sum_sq = 0.0, sum_ref = 0.0;
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < exact.size(); ++k) {
-    if (exact[k] < 0.0) continue;
-    const double e = std::abs(static_cast<double>(att.codes[k]) / max_code - exact[k]);
-    sum_abs += e, sum_sq += e * e, sum_ref += exact[k] * exact[k];
-    row.max_abs_error = std::max(row.max_abs_error, e);
-    ++n;
-  }
-  if (n > 0) {
-    row.mean_abs_error = sum_abs / static_cast<double>(n);
-    // −log2 of the relative RMS error; 64 stands for "no error at all".
-    row.precision_bits = sum_sq > 0.0 && sum_ref > 0.0 ? -0.5 * std::log2(sum_sq / sum_ref) : 64.0;
-  }
+  const AttenuationError err = attenuation_error(run);
+  row.mean_abs_error = err.mean_abs;
+  row.max_abs_error = err.max_abs;
+  row.precision_bits = err.precision_bits;
   // The edge strip's cell: the final image's region of Figure 7's inset (scaled to the
   // image size), each pixel 4x4, at 8 bits.
   {
@@ -260,6 +270,37 @@ std::vector<StudyRow> merge_study(const std::vector<nlohmann::json>& slices, nlo
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(fmt::format("not a study.json slice: {}", e.what()));
   }
+}
+
+std::vector<ProvenanceRow> precision_provenance(const ProgramOptions& options) {
+  struct Variant {
+    const char* stage;
+    void (*widen)(ProgramOptions&);
+  };
+  const Variant variants[] = {
+      {"as given", [](ProgramOptions&) {}},
+      {"colour planes widened to 16 bits", [](ProgramOptions& o) { o.color_bits = 16; }},
+      {"texture formats widened to 16 bits", [](ProgramOptions& o) { o.texture_bits = 16; }},
+      {"colour table widened to 16 bits", [](ProgramOptions& o) { o.table_bits = 16; }},
+      {"accumulation widened to 32 bits", [](ProgramOptions& o) { o.accum_bits = 32; }},
+  };
+  std::vector<ProvenanceRow> rows;
+  for (const Variant& v : variants) {
+    ProgramOptions o = options;
+    if (o.program != "hw-shadow") {  // the bias stays the same depth when the planes widen
+      if (std::isnan(o.bias)) o.bias = std::ldexp(1.0, o.color_bits - 8);
+      const double bias8 = o.bias / std::ldexp(1.0, o.color_bits - 8);
+      v.widen(o);
+      o.bias = bias8 * std::ldexp(1.0, o.color_bits - 8);
+    } else {
+      v.widen(o);
+    }
+    ProgramSession session(o);
+    session.frame();
+    const ProgramRun run = session.finish();
+    rows.push_back({v.stage, count_levels(run.image("attenuation")), attenuation_error(run)});
+  }
+  return rows;
 }
 
 }  // namespace passim

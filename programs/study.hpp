@@ -33,6 +33,22 @@ struct StudyRow {
   CapturedImage edge;  // a shadow edge of the final image, magnified 4x, 8-bit RGB (not in the tables)
 };
 
+// A run's attenuation against its algorithm in double precision (exact_attenuation).
+struct AttenuationError {
+  double mean_abs = 0.0, max_abs = 0.0, precision_bits = 0.0;
+};
+AttenuationError attenuation_error(const ProgramRun& run);
+
+// Precision provenance: the run as given, then with one stage at a time widened to its
+// widest (texture formats 16 bits, the colour table 16, accumulation 32, the colour planes
+// 16); what each gains says where information is lost.
+struct ProvenanceRow {
+  std::string stage;  // "as given" or the stage widened
+  int levels = 0;
+  AttenuationError error;
+};
+std::vector<ProvenanceRow> precision_provenance(const ProgramOptions& options);
+
 // Runs one point of the sweep (deterministic, independent of every other point).
 StudyRow run_study_point(const ProgramOptions& point, int index);
 
