@@ -356,6 +356,11 @@ int main(int argc, char** argv) {
   program->add_option("--size", pc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
   program->add_option("--filter", pc.filter, "Footprint NxN: pcf 2x2-4x4, fast-pcf 2x2 or 4x4, mdsm 1x1-3x3");
   program->add_option("--depths", pc.options.depths, "mdsm: depths per map cell, 1-3")->capture_default_str();
+  program->add_option("--texture-bits", pc.options.texture_bits,
+                      "Texture internal formats: 4, 8, 12, 16 (0: the smallest holding the colour width)")
+      ->capture_default_str();
+  program->add_option("--table-bits", pc.options.table_bits, "Counting colour table format: 4, 8, 12, 16 (0: as textures)")
+      ->capture_default_str();
   program->add_option("--scene", pc.options.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
   program->add_option("--bias", pc.options.bias, "Depth bias in steps of the depth encoding (default: one 8-bit step, 2^(bits-8))");
   program->add_option("--profile", pc.options.profile, "Machine profile (passim info)")->capture_default_str();
@@ -420,6 +425,20 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   provenance->add_option("--accum-bits", pvc.base.accum_bits, "Accumulation width (0: the default)")->capture_default_str();
   provenance->add_option("--profile", pvc.base.profile, "Machine profile")->capture_default_str();
+  auto* what_if = study->add_subcommand("what-if", "A program as given against the same with settings changed: image and cost");
+  StudyCommand wic;
+  what_if->add_option("--program", wic.base.program, "The program (passim program --list)")->required();
+  what_if->add_option("--what-if", wic.what_if,
+                      "KEY=VALUE (bits, depth-bits, texture-bits, table-bits, accum-bits, map, depths, filter, bias); repeatable")
+      ->required();
+  what_if->add_option("--filter", wic.filter, "Its footprint NxN");
+  what_if->add_option("--depths", wic.base.depths, "mdsm: depths per cell")->capture_default_str();
+  what_if->add_option("--scene", wic.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
+  what_if->add_option("--size", wic.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
+  what_if->add_option("--bits", wic.base.color_bits, "Colour width")->capture_default_str();
+  what_if->add_option("--texture-bits", wic.base.texture_bits, "Texture formats (0: as the colour)")->capture_default_str();
+  what_if->add_option("--profile", wic.base.profile, "Machine profile the program runs on")->capture_default_str();
+  what_if->add_option("--cost", wic.cost_profile, "Machine profile the cost is estimated on")->capture_default_str();
   auto* merge = app.add_subcommand("merge", "Join sharded study outputs into the files an unsharded run writes");
   std::vector<std::string> merge_dirs;
   std::string merge_out = "study";
@@ -440,6 +459,7 @@ int main(int argc, char** argv) {
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
   if (*provenance) return provenance_command(pvc);
+  if (*what_if) return what_if_command(wic);
   if (*merge) return merge_command(merge_dirs, merge_out);
   if (*cost) {
     cc.program_given = cost->count("--program") > 0;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "pipeline/image_io.hpp"
+#include "pipeline/cost.hpp"
 #include "programs/plot.hpp"
 
 namespace fs = std::filesystem;
@@ -234,6 +235,98 @@ int provenance_command(const StudyCommand& c) {
       std::cout << "no single stage loses information on its own: widening any one alone gains nothing\n";
   } catch (const std::exception& e) {
     std::cerr << "passim study provenance: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+namespace {
+
+// Applies one KEY=VALUE change to a program's options.
+void apply_change(ProgramOptions& o, const std::string& change) {
+  const std::size_t eq = change.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument(fmt::format("--what-if {}: expected KEY=VALUE", change));
+  const std::string key = change.substr(0, eq), value = change.substr(eq + 1);
+  auto number = [&]() {
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(v))
+      throw std::invalid_argument(fmt::format("--what-if {}: '{}' is not a number", change, value));
+    return v;
+  };
+  if (key == "bits") {
+    const double bias8 = std::isnan(o.bias) ? 1.0 : o.bias / std::ldexp(1.0, o.color_bits - 8);
+    o.color_bits = static_cast<int>(number());
+    if (o.program != "hw-shadow") o.bias = bias8 * std::ldexp(1.0, o.color_bits - 8);  // the same depth
+  } else if (key == "depth-bits") {
+    o.depth_bits = static_cast<int>(number());
+  } else if (key == "texture-bits") {
+    o.texture_bits = static_cast<int>(number());
+  } else if (key == "table-bits") {
+    o.table_bits = static_cast<int>(number());
+  } else if (key == "accum-bits") {
+    o.accum_bits = static_cast<int>(number());
+  } else if (key == "map") {
+    o.map_size = static_cast<int>(number());
+  } else if (key == "depths") {
+    o.depths = static_cast<int>(number());
+  } else if (key == "filter") {
+    int a = 0, b = 0;
+    const int got = std::sscanf(value.c_str(), "%dx%d", &a, &b);
+    if (got < 1 || (got == 2 && a != b)) throw std::invalid_argument(fmt::format("--what-if {}: filter NxN", change));
+    o.filter = a;
+  } else if (key == "bias") {  // in 8-bit steps of depth
+    o.bias = number() * std::ldexp(1.0, (o.program == "hw-shadow" ? o.depth_bits : o.color_bits) - 8);
+  } else {
+    throw std::invalid_argument(fmt::format(
+        "--what-if {}: unknown setting '{}' (bits, depth-bits, texture-bits, table-bits, accum-bits, map, depths, "
+        "filter, bias)", change, key));
+  }
+}
+
+}  // namespace
+
+int what_if_command(const StudyCommand& c) {
+  try {
+    ProgramOptions base = c.base;
+    if (std::sscanf(c.size.c_str(), "%dx%d", &base.width, &base.height) != 2)
+      throw std::invalid_argument(fmt::format("--size {}: expected WIDTHxHEIGHT", c.size));
+    if (!c.filter.empty()) apply_change(base, "filter=" + c.filter);
+    ProgramOptions changed = base;
+    for (const std::string& w : c.what_if) apply_change(changed, w);
+    const MachineProfile* timed = find_profile(c.cost_profile);
+    if (!timed || timed->rates.triangles <= 0.0)
+      throw std::invalid_argument(fmt::format("--cost {}: not a profile with cost rates", c.cost_profile));
+    struct Result {
+      int levels;
+      AttenuationError error;
+      double fps;
+      std::uint64_t fragments;
+    };
+    auto measure = [&](const ProgramOptions& o) {
+      ProgramSession session(o);
+      session.frame();
+      const ProgramRun run = session.finish();
+      const Counters total = run.result.context->total_counters();
+      return Result{count_levels(run.image("attenuation")), attenuation_error(run),
+                    frame_cost(run.result.context->passes(), *timed).fps(), total.fragments_generated};
+    };
+    const Result a = measure(base), b = measure(changed);
+    std::string what;
+    for (const std::string& w : c.what_if) what += (what.empty() ? "" : ", ") + w;
+    std::cout << fmt::format("{} on {}: as given against what if {}\n", base.program, base.scene, what);
+    std::cout << fmt::format("  {:<34} {:>12} {:>12} {:>10}\n", "", "as given", "what if", "change");
+    std::cout << fmt::format("  {:<34} {:>12} {:>12} {:>+10}\n", "shadow levels", a.levels, b.levels, b.levels - a.levels);
+    std::cout << fmt::format("  {:<34} {:>12.2f} {:>12.2f} {:>+10.2f}\n", "precision bits", a.error.precision_bits,
+                             b.error.precision_bits, b.error.precision_bits - a.error.precision_bits);
+    std::cout << fmt::format("  {:<34} {:>12.6f} {:>12.6f} {:>+10.6f}\n", "mean attenuation error", a.error.mean_abs,
+                             b.error.mean_abs, b.error.mean_abs - a.error.mean_abs);
+    std::cout << fmt::format("  {:<34} {:>12} {:>12} {:>+10}\n", "fragments", a.fragments, b.fragments,
+                             static_cast<std::int64_t>(b.fragments) - static_cast<std::int64_t>(a.fragments));
+    std::cout << fmt::format("  {:<34} {:>12.2f} {:>12.2f} {:>+9.0f}%\n", fmt::format("fps on {}", timed->name), a.fps,
+                             b.fps, 100.0 * (b.fps / a.fps - 1.0));
+  } catch (const std::exception& e) {
+    std::cerr << "passim study what-if: " << e.what() << "\n";
     return 1;
   }
   return 0;

@@ -121,3 +121,13 @@ expect_exit(1 merge ${WORK}/s_1 ${WORK}/s_other --out ${WORK}/s_bad)
 if(NOT LAST_ERR MATCHES "different sweeps")
   message(FATAL_ERROR "unexpected message: ${LAST_ERR}")
 endif()
+
+# What-if: the two runs side by side; an unknown setting is refused.
+expect_exit(0 study what-if --program pcf --filter 2x2 --scene edges --size 160x120 --what-if filter=3x3)
+if(NOT LAST_OUT MATCHES "shadow levels +5 +10 +\\+5")
+  message(FATAL_ERROR "what-if did not report 5 -> 10 levels: ${LAST_OUT}")
+endif()
+expect_exit(1 study what-if --program pcf --scene edges --what-if colour=blue)
+if(NOT LAST_ERR MATCHES "unknown setting 'colour'")
+  message(FATAL_ERROR "unexpected message: ${LAST_ERR}")
+endif()
