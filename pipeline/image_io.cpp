@@ -109,6 +109,22 @@ std::filesystem::path write_image(const CapturedImage& image, const std::filesys
   return path;
 }
 
+void write_rgb8(const std::filesystem::path& file, int width, int height, const std::vector<std::uint8_t>& top_first) {
+  CapturedImage img;
+  img.name = file.stem().string();
+  img.plane = "rgb";
+  img.width = width;
+  img.height = height;
+  img.channels = 3;
+  img.bits = {8, 8, 8, 0};
+  img.codes.resize(top_first.size());
+  const std::size_t row = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y)  // CapturedImage rows are bottom first
+    std::copy_n(top_first.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row), row,
+                img.codes.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row));
+  write_image(img, file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+}
+
 void write_text_file(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path tmp = temp_path_for(path);
   {

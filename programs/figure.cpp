@@ -67,20 +67,10 @@ void write_figure(const std::filesystem::path& file, const std::vector<std::vect
         for (int x = 0; x < inset.width * mag; ++x)
           put(x0 + x, y0 + cell_h + gap + y, pixel(inset.x + x / mag, inset.y + inset.height - 1 - y / mag));
     }
-  CapturedImage out;
-  out.name = file.stem().string();
-  out.plane = "rgb";
-  out.width = fig_w;
-  out.height = fig_h;
-  out.channels = 3;
-  out.bits = {8, 8, 8, 0};
-  out.codes.resize(canvas.size() * 3);
-  for (int y = 0; y < fig_h; ++y)  // CapturedImage rows are bottom first
-    for (int x = 0; x < fig_w; ++x)
-      for (int k = 0; k < 3; ++k)
-        out.codes[(static_cast<std::size_t>(fig_h - 1 - y) * static_cast<std::size_t>(fig_w) + static_cast<std::size_t>(x)) * 3 + static_cast<std::size_t>(k)] =
-            canvas[static_cast<std::size_t>(y) * static_cast<std::size_t>(fig_w) + static_cast<std::size_t>(x)][static_cast<std::size_t>(k)];
-  write_image(out, file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+  std::vector<std::uint8_t> bytes(canvas.size() * 3);
+  for (std::size_t p = 0; p < canvas.size(); ++p)
+    for (std::size_t k = 0; k < 3; ++k) bytes[3 * p + k] = canvas[p][k];
+  write_rgb8(file, fig_w, fig_h, bytes);
 }
 
 }  // namespace passim

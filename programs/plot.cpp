@@ -37,21 +37,9 @@ namespace {
 // An 8-bit RGB image buffer out through the project's atomic image writer.
 void write_buffer(const std::filesystem::path& file, const OIIO::ImageBuf& buf) {
   const int width = buf.spec().width, height = buf.spec().height;
-  CapturedImage img;
-  img.name = file.stem().string();
-  img.plane = "rgb";
-  img.width = width;
-  img.height = height;
-  img.channels = 3;
-  img.bits = {8, 8, 8, 0};
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
   buf.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 3), OIIO::TypeDesc::UINT8, pixels.data());
-  img.codes.resize(pixels.size());
-  const std::size_t row = static_cast<std::size_t>(width) * 3;
-  for (int y = 0; y < height; ++y)  // CapturedImage rows are bottom first
-    std::copy_n(pixels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row), row,
-                img.codes.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height - 1 - y) * row));
-  write_image(img, file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path());
+  write_rgb8(file, width, height, pixels);
 }
 
 }  // namespace
