@@ -19,6 +19,7 @@
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
 #include "cli/cost_command.hpp"
+#include "cli/html_report.hpp"
 #include "cli/study_command.hpp"
 #include "programs/figure.hpp"
 #include "programs/programs.hpp"
@@ -373,7 +374,7 @@ int main(int argc, char** argv) {
   program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");
   program->add_flag("--quiet,-q", pc.quiet, "Print nothing but errors");
 
-  auto* report = app.add_subcommand("report", "Reports on a trace or a program (cost)");
+  auto* report = app.add_subcommand("report", "Reports: cost (a trace or a program), html (a study)");
   report->require_subcommand(1);
   auto* cost = report->add_subcommand("cost", "Estimated time per pass and stage on modelled machines (docs/cost-model.md)");
   CostCommand cc;
@@ -391,6 +392,12 @@ int main(int argc, char** argv) {
   cost->add_flag("--markdown", cost_markdown, "Markdown tables on stdout");
   cost->add_flag("--paper", cc.paper, "Predicted against published frames per second (Figures 7 and 8)");
 
+  auto* html = report->add_subcommand("html", "One self-contained HTML page of a study directory and its program's cost");
+  std::string html_dir, html_out, html_cost = "octane-vpro8,o2";
+  html->add_option("study", html_dir, "A study output directory (passim study precision --out)")->required();
+  html->add_option("--out,-o", html_out, "The page (default: STUDY/report.html)");
+  html->add_option("--cost", html_cost, "Timed profiles for the cost tables, comma-separated ('' for none)")
+      ->capture_default_str();
   auto* study = app.add_subcommand("study", "Precision studies (docs/studies.md)");
   study->require_subcommand(1);
   auto* precision = study->add_subcommand("precision", "A program over a sweep of widths, measured against its double-precision reference");
@@ -458,6 +465,13 @@ int main(int argc, char** argv) {
   if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
+  if (*html) {
+    std::vector<std::string> profiles;
+    std::stringstream list(html_cost);
+    for (std::string item; std::getline(list, item, ',');)
+      if (!item.empty()) profiles.push_back(item);
+    return html_report_command(html_dir, html_out, profiles);
+  }
   if (*provenance) return provenance_command(pvc);
   if (*what_if) return what_if_command(wic);
   if (*merge) return merge_command(merge_dirs, merge_out);
