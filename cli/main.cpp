@@ -18,6 +18,7 @@
 #include "pipeline/profile.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
+#include "cli/args.hpp"
 #include "cli/cost_command.hpp"
 #include "cli/html_report.hpp"
 #include "cli/study_command.hpp"
@@ -138,18 +139,12 @@ int program_command(ProgramCommand& c) {
     return kOk;
   }
   ProgramOptions& o = c.options;
-  if (std::sscanf(c.size.c_str(), "%dx%d", &o.width, &o.height) != 2) {
-    std::cerr << "passim: --size " << c.size << ": expected WIDTHxHEIGHT, e.g. 800x600\n";
+  try {
+    parse_size(c.size, o.width, o.height);
+    if (!c.filter.empty()) o.filter = parse_filter(c.filter);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "passim: " << e.what() << "\n";
     return kUsage;
-  }
-  if (!c.filter.empty()) {
-    int a = 0, b = 0;
-    const int got = std::sscanf(c.filter.c_str(), "%dx%d", &a, &b);
-    if (got < 1 || (got == 2 && a != b)) {
-      std::cerr << "passim: --filter " << c.filter << ": expected NxN (square), e.g. 2x2\n";
-      return kUsage;
-    }
-    o.filter = a;
   }
   o.jitter = !c.no_jitter;
   const auto info = std::find_if(program_list().begin(), program_list().end(),
@@ -466,11 +461,7 @@ int main(int argc, char** argv) {
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
   if (*html) {
-    std::vector<std::string> profiles;
-    std::stringstream list(html_cost);
-    for (std::string item; std::getline(list, item, ',');)
-      if (!item.empty()) profiles.push_back(item);
-    return html_report_command(html_dir, html_out, profiles);
+    return html_report_command(html_dir, html_out, parse_list(html_cost));
   }
   if (*provenance) return provenance_command(pvc);
   if (*what_if) return what_if_command(wic);
@@ -478,10 +469,7 @@ int main(int argc, char** argv) {
   if (*cost) {
     cc.program_given = cost->count("--program") > 0;
     cc.bits_given = cost->count("--bits") > 0;
-    cc.profiles.clear();
-    std::stringstream list(cost_profiles);
-    for (std::string item; std::getline(list, item, ',');)
-      if (!item.empty()) cc.profiles.push_back(item);
+    cc.profiles = parse_list(cost_profiles);
     if (cost_csv + cost_json + cost_markdown > 1) {
       std::cerr << "passim report cost: choose one of --csv, --json, --markdown\n";
       return kUsage;
@@ -492,13 +480,12 @@ int main(int argc, char** argv) {
       return kUsage;
     }
     if (!cost_filter.empty()) {
-      int a = 0, b = 0;
-      const int got = std::sscanf(cost_filter.c_str(), "%dx%d", &a, &b);
-      if (got < 1 || (got == 2 && a != b)) {
-        std::cerr << "passim: --filter " << cost_filter << ": expected NxN (square), e.g. 2x2\n";
+      try {
+        cc.program.filter = parse_filter(cost_filter);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "passim: " << e.what() << "\n";
         return kUsage;
       }
-      cc.program.filter = a;
     }
     return cost_command(cc);
   }

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "pipeline/image_io.hpp"
+#include "cli/args.hpp"
 #include "pipeline/cost.hpp"
 #include "programs/plot.hpp"
 
@@ -145,8 +146,7 @@ int study_command(const StudyCommand& c) {
   int shard = 0, shards = 1;
   try {
     sweep.base = c.base;
-    if (std::sscanf(c.size.c_str(), "%dx%d", &sweep.base.width, &sweep.base.height) != 2)
-      throw std::invalid_argument(fmt::format("--size {}: expected WIDTHxHEIGHT", c.size));
+    parse_size(c.size, sweep.base.width, sweep.base.height);
     sweep.color_bits = int_list(c.bits, "--bits", 4, 16);
     if (!c.depth_bits.empty()) sweep.depth_bits = int_list(c.depth_bits, "--depth-bits", 1, 32);
     if (!c.biases.empty()) sweep.biases = double_list(c.biases, "--bias");
@@ -155,12 +155,7 @@ int study_command(const StudyCommand& c) {
       for (int m : sweep.map_sizes)
         if ((m & (m - 1)) != 0) throw std::invalid_argument(fmt::format("--map {}: a power of two", m));
     }
-    if (!c.filter.empty()) {
-      int a = 0, b = 0;
-      const int got = std::sscanf(c.filter.c_str(), "%dx%d", &a, &b);
-      if (got < 1 || (got == 2 && a != b)) throw std::invalid_argument(fmt::format("--filter {}: NxN", c.filter));
-      sweep.base.filter = a;
-    }
+    if (!c.filter.empty()) sweep.base.filter = parse_filter(c.filter);
     int i = 0, n = 0;
     char tail = 0;
     if (std::sscanf(c.shard.c_str(), "%d/%d%c", &i, &n, &tail) != 2 || n < 1 || i < 1 || i > n)
@@ -203,14 +198,8 @@ int study_command(const StudyCommand& c) {
 int provenance_command(const StudyCommand& c) {
   try {
     ProgramOptions o = c.base;
-    if (std::sscanf(c.size.c_str(), "%dx%d", &o.width, &o.height) != 2)
-      throw std::invalid_argument(fmt::format("--size {}: expected WIDTHxHEIGHT", c.size));
-    if (!c.filter.empty()) {
-      int a = 0, b = 0;
-      const int got = std::sscanf(c.filter.c_str(), "%dx%d", &a, &b);
-      if (got < 1 || (got == 2 && a != b)) throw std::invalid_argument(fmt::format("--filter {}: NxN", c.filter));
-      o.filter = a;
-    }
+    parse_size(c.size, o.width, o.height);
+    if (!c.filter.empty()) o.filter = parse_filter(c.filter);
     const std::vector<ProvenanceRow> rows = precision_provenance(o);
     std::cout << fmt::format("{} on {}: {}-bit colour, texture formats {}, colour table {}, accumulation {}\n",
                              o.program, o.scene, o.color_bits,
@@ -271,10 +260,7 @@ void apply_change(ProgramOptions& o, const std::string& change) {
   } else if (key == "depths") {
     o.depths = static_cast<int>(number());
   } else if (key == "filter") {
-    int a = 0, b = 0;
-    const int got = std::sscanf(value.c_str(), "%dx%d", &a, &b);
-    if (got < 1 || (got == 2 && a != b)) throw std::invalid_argument(fmt::format("--what-if {}: filter NxN", change));
-    o.filter = a;
+    o.filter = parse_filter(value, "--what-if filter=");
   } else if (key == "bias") {  // in 8-bit steps of depth
     o.bias = number() * std::ldexp(1.0, (o.program == "hw-shadow" ? o.depth_bits : o.color_bits) - 8);
   } else {
@@ -289,9 +275,8 @@ void apply_change(ProgramOptions& o, const std::string& change) {
 int what_if_command(const StudyCommand& c) {
   try {
     ProgramOptions base = c.base;
-    if (std::sscanf(c.size.c_str(), "%dx%d", &base.width, &base.height) != 2)
-      throw std::invalid_argument(fmt::format("--size {}: expected WIDTHxHEIGHT", c.size));
-    if (!c.filter.empty()) apply_change(base, "filter=" + c.filter);
+    parse_size(c.size, base.width, base.height);
+    if (!c.filter.empty()) base.filter = parse_filter(c.filter);
     ProgramOptions changed = base;
     for (const std::string& w : c.what_if) apply_change(changed, w);
     const MachineProfile* timed = find_profile(c.cost_profile);

@@ -57,6 +57,8 @@ const CapturedImage& ProgramRun::image(const std::string& name) const {
   throw std::out_of_range("no image named " + name);
 }
 
+double uniform01(std::mt19937& rng) { return static_cast<double>(rng() >> 8) / 16777216.0; }
+
 int count_levels(const CapturedImage& image) {
   std::vector<std::uint32_t> v(image.codes.begin(), image.codes.end());
   std::sort(v.begin(), v.end());
@@ -92,8 +94,6 @@ std::vector<int> channel_shares(int k, int max_code) {
   return s;
 }
 
-// A deterministic uniform number in [0, 1) (24 bits of mt19937, which the standard fixes).
-double uniform01(std::mt19937& rng) { return static_cast<double>(rng() >> 8) / 16777216.0; }
 
 class Program {
  public:

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,6 +93,10 @@ class ProgramSession {
   struct State;
   std::unique_ptr<State> state_;
 };
+
+// A deterministic uniform number in [0, 1): 24 bits of mt19937 (whose output the standard
+// fixes, unlike the library's distributions). The programs' jitter and Reeves' samples.
+double uniform01(std::mt19937& rng);
 
 // The number of distinct values in a single-channel image, counting values one code
 // apart as one level (the paper's 63 and 64).

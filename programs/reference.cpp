@@ -503,7 +503,6 @@ class DoubleMap {
   std::vector<double> depth_;
 };
 
-double uniform01(std::mt19937& rng) { return static_cast<double>(rng() >> 8) / 16777216.0; }
 
 }  // namespace
 
