@@ -269,6 +269,7 @@ const std::vector<CallInfo>& table() {
       ROW(glPixelTransferi, "ex", kNone),
       ROW(glPixelMapfv, "eiF*", kNone),
       ROW(glPixelMapusv, "eiH*", kNone),
+      ROW(glPixelMapuiv, "eiU*", kNone),
       ROW(glDrawPixels, "iieeV*", kNone),
       ROW(glReadPixels, "iiiieeO", kQuery),
       ROW(glCopyPixels, "iiiie", kNone),

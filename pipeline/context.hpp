@@ -243,6 +243,7 @@ class Context {
   void glPixelTransferi(GLenum pname, GLint param);
   void glPixelMapfv(GLenum map, GLsizei mapsize, const GLfloat* values);
   void glPixelMapusv(GLenum map, GLsizei mapsize, const GLushort* values);
+  void glPixelMapuiv(GLenum map, GLsizei mapsize, const GLuint* values);
   void glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels);
   void glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void* pixels);
   void glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type);

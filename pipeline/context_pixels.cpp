@@ -118,13 +118,29 @@ void Context::glPixelMapfv(GLenum map, GLsizei mapsize, const GLfloat* values) {
   set_pixel_map(map, mapsize, v.data());
 }
 
+namespace {
+
+// Colour maps given as integers are normalised (Table 2.6: c / (2^b − 1)); index maps keep
+// the integer.
+template <class T>
+std::vector<double> pixel_map_values(GLenum map, GLsizei mapsize, const T* values, double max_value) {
+  const bool is_color = map >= GL_PIXEL_MAP_R_TO_R && map <= GL_PIXEL_MAP_A_TO_A;
+  std::vector<double> v(mapsize > 0 && values ? static_cast<std::size_t>(mapsize) : 0u);
+  for (std::size_t k = 0; k < v.size(); ++k)
+    v[k] = is_color ? static_cast<double>(values[k]) / max_value : static_cast<double>(values[k]);
+  return v;
+}
+
+}  // namespace
+
 void Context::glPixelMapusv(GLenum map, GLsizei mapsize, const GLushort* values) {
   PASSIM_ENTRY(map, mapsize, ArrayArg<GLushort>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
-  // Colour maps given as integers are normalised (Table 2.6); index maps keep the integer.
-  const bool is_color = map >= GL_PIXEL_MAP_R_TO_R && map <= GL_PIXEL_MAP_A_TO_A;
-  std::vector<double> v(mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u);
-  for (std::size_t k = 0; k < v.size(); ++k) v[k] = is_color ? values[k] / 65535.0 : values[k];
-  set_pixel_map(map, mapsize, v.data());
+  set_pixel_map(map, mapsize, pixel_map_values(map, mapsize, values, 65535.0).data());
+}
+
+void Context::glPixelMapuiv(GLenum map, GLsizei mapsize, const GLuint* values) {
+  PASSIM_ENTRY(map, mapsize, ArrayArg<GLuint>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  set_pixel_map(map, mapsize, pixel_map_values(map, mapsize, values, 4294967295.0).data());
 }
 
 // ---------------------------------------------------------------- rectangles to fragments (§3.6.4)

@@ -737,7 +737,7 @@ class Replayer {
     // Pointer arguments whose length another argument gives.
     if (fn == "glDrawElements" && values[1].i > 0 && values[3].count < static_cast<std::size_t>(values[1].i))
       fail(fmt::format("glDrawElements: count is {} but {} indices are given", values[1].i, values[3].count));
-    if ((fn == "glPixelMapfv" || fn == "glPixelMapusv") && values[1].i > 0 &&
+    if ((fn == "glPixelMapfv" || fn == "glPixelMapusv" || fn == "glPixelMapuiv") && values[1].i > 0 &&
         values[2].count < static_cast<std::size_t>(values[1].i))
       fail(fmt::format("{}: mapsize is {} but {} values are given", fn, values[1].i, values[2].count));
     if (fn == "glCallLists" && values[0].i > 0 && values[2].count < static_cast<std::size_t>(values[0].i))

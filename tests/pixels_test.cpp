@@ -333,4 +333,13 @@ TEST(Imaging, PixelMapColor) {
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
   ctx.glPixelMapfv(GL_PIXEL_MAP_R_TO_R, 0, map);
   EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+  // The same map as unsigned ints (Table 2.6: c / (2^32 − 1)): 2^30 -> 0.25000000006 -> 64;
+  // 2^32 − 1 -> 1 -> 255.
+  const GLuint umap[3] = {0u, 1u << 30, 4294967295u};
+  ctx.glPixelMapuiv(GL_PIXEL_MAP_R_TO_R, 3, umap);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(2, 1, GL_RGBA, GL_FLOAT, px);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 64u);
+  EXPECT_EQ(pixel(ctx, 1, 0)[0], 255u);
 }
