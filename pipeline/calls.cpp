@@ -1,6 +1,8 @@
 // The call table (see calls.hpp). One row per GL entry point.
 #include "pipeline/calls.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -515,5 +517,32 @@ Value array_value(const void* data, GLenum type, std::size_t count) {
   return v;
 }
 }  // namespace detail
+
+GLenum param_element_type(const CallInfo& info, std::size_t index, const std::vector<Value>& done) {
+  switch (info.params[index].kind) {
+    case 'F': return GL_FLOAT;
+    case 'D': return GL_DOUBLE;
+    case 'I': return GL_INT;
+    case 'U': return GL_UNSIGNED_INT;
+    case 'B': return GL_UNSIGNED_BYTE;
+    case 'H': return GL_UNSIGNED_SHORT;
+    case 'V':
+      for (std::size_t k = index; k-- > 0;)
+        if (info.params[k].kind == 'e') return static_cast<GLenum>(done[k].i);
+      return 0;
+    default: return 0;
+  }
+}
+
+std::size_t param_values_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done) {
+  const CallInfo::Param& p = info.params[index];
+  if (p.count_rule == 'n') return static_cast<std::size_t>(p.fixed_count);
+  if (p.count_rule != 'p') return 0;
+  for (std::size_t k = index; k-- > 0;)
+    if (info.params[k].kind == 'e')
+      // An unknown pname still reads one value.
+      return std::max<std::size_t>(static_cast<std::size_t>(pname_count(static_cast<GLenum>(done[k].i))), 1);
+  return 1;
+}
 
 }  // namespace passim

@@ -66,6 +66,12 @@ int pname_count(GLenum pname);
 // Bytes of one element of a GL data type; 0 if unknown.
 int type_size(GLenum type);
 
+// The element type of array parameter `index`: its letter's (F float, D double, ...), or for
+// 'V' the closest preceding enum argument's (`done` holds the arguments before it).
+GLenum param_element_type(const CallInfo& info, std::size_t index, const std::vector<Value>& done);
+// The fewest values array parameter `index` must hold: its fixed count, or by the pname.
+std::size_t param_values_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done);
+
 // A recorded or compiled call.
 struct Call {
   const CallInfo* info = nullptr;

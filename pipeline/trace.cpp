@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "pipeline/call_runner.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "stages/pixel_unpack.hpp"
 
@@ -319,18 +320,6 @@ std::optional<T> parse_number(const std::string& w) {
   }
 }
 
-GLenum array_elem_type(char kind) {
-  switch (kind) {
-    case 'F': return GL_FLOAT;
-    case 'D': return GL_DOUBLE;
-    case 'I': return GL_INT;
-    case 'U': return GL_UNSIGNED_INT;
-    case 'B': return GL_UNSIGNED_BYTE;
-    case 'H': return GL_UNSIGNED_SHORT;
-    default: return 0;
-  }
-}
-
 // ------------------------------------------------------------------ replay
 
 class Replayer {
@@ -397,6 +386,7 @@ class Replayer {
     std::string err = f.validate(m.limits.max_framebuffer_size);
     if (!err.empty()) fail(err);
     result_.context = std::make_unique<Context>(f, m);
+    runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
     if (options_.record) {
       options_.record->write_header(s);
       result_.context->set_call_sink(options_.record);
@@ -642,14 +632,7 @@ class Replayer {
         break;
     }
     // Arrays.
-    GLenum type = array_elem_type(p.kind);
-    if (p.kind == 'V') {
-      for (std::size_t k = index; k-- > 0;)
-        if (info.params[k].kind == 'e') {
-          type = static_cast<GLenum>(done[k].i);
-          break;
-        }
-    }
+    const GLenum type = param_element_type(info, index, done);
     const int size = type_size(type);
     if (size == 0) fail(fmt::format("{}: unknown data type {} for argument {}", info.name, enum_name(type), index + 1));
     v.elem_type = type;
@@ -695,17 +678,7 @@ class Replayer {
       fail(fmt::format("{}: argument {} must be an array {{...}}, file(\"...\") or NULL", info.name, index + 1));
     }
     v.bytes = std::move(bytes);
-    // Element counts the call will read.
-    std::size_t need = 0;
-    if (p.count_rule == 'n') need = static_cast<std::size_t>(p.fixed_count);
-    if (p.count_rule == 'p') {
-      for (std::size_t k = index; k-- > 0;)
-        if (info.params[k].kind == 'e') {
-          need = static_cast<std::size_t>(pname_count(static_cast<GLenum>(done[k].i)));
-          break;
-        }
-    }
-    if (p.count_rule == 'p') need = std::max<std::size_t>(need, 1);  // an unknown pname still reads one value
+    const std::size_t need = param_values_needed(info, index, done);
     if (v.count < need)
       fail(fmt::format("{}: argument {} needs {} values, the trace gives {}", info.name, index + 1, need, v.count));
     return v;
@@ -734,83 +707,19 @@ class Replayer {
       fail(fmt::format("{} takes {} arguments, the trace gives {}", fn, info->params.size(), args.size()));
     std::vector<Value> values;
     for (std::size_t k = 0; k < args.size(); ++k) values.push_back(convert(args[k], info->params[k], *info, k, values));
-    // Pointer arguments whose length another argument gives.
-    if (fn == "glDrawElements" && values[1].i > 0 && values[3].count < static_cast<std::size_t>(values[1].i))
-      fail(fmt::format("glDrawElements: count is {} but {} indices are given", values[1].i, values[3].count));
-    if ((fn == "glPixelMapfv" || fn == "glPixelMapusv" || fn == "glPixelMapuiv") && values[1].i > 0 &&
-        values[2].count < static_cast<std::size_t>(values[1].i))
-      fail(fmt::format("{}: mapsize is {} but {} values are given", fn, values[1].i, values[2].count));
-    if (fn == "glCallLists" && values[0].i > 0 && values[2].count < static_cast<std::size_t>(values[0].i))
-      fail(fmt::format("glCallLists: n is {} but {} names are given", values[0].i, values[2].count));
-
     ensure_context();
-    Context& ctx = *result_.context;
-    ctx.set_source_location(fmt::format("{}:{}", name_, line_));
-    if (info->query) return;  // queries change nothing; their output arguments cannot be replayed
-    if ((fn == "glGenTextures" || fn == "glDeleteTextures") && values[0].i > 65536)
-      fail(fmt::format("{}: n = {} is above the 65536 names a trace may ask for at once", fn, values[0].i));
-    if (fn == "glDeleteTextures" && values[0].i > 0 && values[1].count < static_cast<std::size_t>(values[0].i))
-      fail(fmt::format("glDeleteTextures: n is {} but {} names are given", values[0].i, values[1].count));
-    check_image_data(fn, values, ctx);
     try {
-      info->invoke(ctx, values);
-    } catch (const ClientDataError& e) {
+      runner_->run(*info, values, fmt::format("{}:{}", name_, line_));
+    } catch (const CallRejected& e) {
       fail(e.what());
     }
-    if (info->recorded_at_draw) {
-      static const std::map<std::string_view, GLenum> arrays = {{"glVertexPointer", GL_VERTEX_ARRAY},
-                                                                 {"glNormalPointer", GL_NORMAL_ARRAY},
-                                                                 {"glColorPointer", GL_COLOR_ARRAY},
-                                                                 {"glTexCoordPointer", GL_TEXTURE_COORD_ARRAY}};
-      const Value& data = values.back();
-      ctx.set_client_array_extent(arrays.at(info->name), data.bytes ? data.bytes->size() : 0);
-      keep_alive_.push_back(data.bytes);
-    }
-    report_errors();
-  }
-
-  // Image data must hold every byte the call will read under the current unpack modes.
-  void check_image_data(const std::string& fn, const std::vector<Value>& v, const Context& ctx) {
-    int w = 0, h = 1;
-    std::size_t format = 0, type = 0, data = 0;
-    if (fn == "glTexImage1D") { w = static_cast<int>(v[3].i); format = 5; type = 6; data = 7; }
-    else if (fn == "glTexImage2D") { w = static_cast<int>(v[3].i); h = static_cast<int>(v[4].i); format = 6; type = 7; data = 8; }
-    else if (fn == "glTexSubImage1D") { w = static_cast<int>(v[3].i); format = 4; type = 5; data = 6; }
-    else if (fn == "glTexSubImage2D") { w = static_cast<int>(v[4].i); h = static_cast<int>(v[5].i); format = 6; type = 7; data = 8; }
-    else if (fn == "glColorTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
-    else if (fn == "glColorSubTable") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
-    else if (fn == "glConvolutionFilter1D") { w = static_cast<int>(v[2].i); format = 3; type = 4; data = 5; }
-    else if (fn == "glConvolutionFilter2D") { w = static_cast<int>(v[2].i); h = static_cast<int>(v[3].i); format = 4; type = 5; data = 6; }
-    else if (fn == "glSeparableFilter2D") {
-      const GLenum f = static_cast<GLenum>(v[4].i), t = static_cast<GLenum>(v[5].i);
-      if (format_components(f) == 0 || !is_pixel_type(t)) return;
-      for (const auto& [arg, n] : {std::pair{6, v[2].i}, std::pair{7, v[3].i}}) {
-        if (!v[static_cast<std::size_t>(arg)].bytes || n <= 0) continue;
-        const std::size_t need = image_bytes(static_cast<int>(n), 1, f, t, ctx.unpack_store());
-        if (v[static_cast<std::size_t>(arg)].bytes->size() < need)
-          fail(fmt::format("glSeparableFilter2D: argument {} needs {} bytes, the trace gives {}", arg + 1, need,
-                           v[static_cast<std::size_t>(arg)].bytes->size()));
-      }
-      return;
-    }
-    else if (fn == "glDrawPixels") { w = static_cast<int>(v[0].i); h = static_cast<int>(v[1].i); format = 2; type = 3; data = 4; }
-    else return;
-    const GLenum f = static_cast<GLenum>(v[format].i), t = static_cast<GLenum>(v[type].i);
-    if (!v[data].bytes || v[data].count == 0 || w <= 0 || h <= 0 || format_components(f) == 0 || !is_pixel_type(t))
-      return;  // no data, or a call the GL rejects before reading
-    const std::size_t need = image_bytes(w, h, f, t, ctx.unpack_store());
-    if (v[data].bytes->size() < need)
-      fail(fmt::format("{}: the image needs {} bytes under the current unpack modes, the trace gives {}", fn, need,
-                       v[data].bytes->size()));
   }
 
   void report_errors() {
-    const auto& log = result_.context->error_log();
-    for (; reported_errors_ < log.size(); ++reported_errors_) {
-      const GlErrorRecord& e = log[reported_errors_];
-      std::string msg = fmt::format("{} raised by {}", enum_name(e.error), e.call);
-      if (options_.diagnostics) *options_.diagnostics << fmt::format("{}: {}\n", e.where, msg);
-      if (options_.strict) fail(msg + " (--strict)");
+    try {
+      runner_->report_errors();
+    } catch (const CallRejected& e) {
+      fail(e.what());
     }
   }
 
@@ -822,8 +731,7 @@ class Replayer {
   std::map<std::string, std::string> fb_overrides_;
   int subpixel_ = -1;
   ReplayResult result_;
-  std::size_t reported_errors_ = 0;
-  std::vector<std::shared_ptr<const std::vector<std::byte>>> keep_alive_;
+  std::unique_ptr<CallRunner> runner_;
 };
 
 }  // namespace

@@ -3,7 +3,7 @@
 # --test: also what the test suite needs beyond the build (Chromium for the HTML report test).
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgl-dev libglm-dev libopenimageio-dev libcli11-dev
-          nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev fonts-dejavu-core)
+          nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev libsnappy-dev fonts-dejavu-core)
 if [ "${1:-}" = "--test" ]; then
   packages+=(chromium)
 fi

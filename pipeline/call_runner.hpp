@@ -1,0 +1,42 @@
+// Running one parsed call on a context, with the checks that every trace reader
+// (.pass text, apitrace binary) shares: data long enough for what the call reads,
+// client-array extents, queries skipped, GL errors reported.
+#pragma once
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pipeline/calls.hpp"
+#include "pipeline/context.hpp"
+
+namespace passim {
+
+// A call whose data cannot be replayed (fewer values than it reads), or a GL error
+// under `strict`: the reader adds its location.
+struct CallRejected : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class CallRunner {
+ public:
+  // `diagnostics` (may be null) receives each GL error as "where: GL_x raised by call".
+  CallRunner(Context& ctx, bool strict, std::ostream* diagnostics) : ctx_(ctx), strict_(strict), diagnostics_(diagnostics) {}
+  // `where` locates the call in messages and the context's error log.
+  void run(const CallInfo& info, const std::vector<Value>& values, const std::string& where);
+  // Reports the GL errors raised since the last report (after drawing outside run()).
+  void report_errors();
+
+ private:
+  void check_counts(const CallInfo& info, const std::vector<Value>& values) const;
+  void check_image_data(const std::string& fn, const std::vector<Value>& v) const;
+
+  Context& ctx_;
+  bool strict_;
+  std::ostream* diagnostics_;
+  std::size_t reported_errors_ = 0;
+  std::vector<std::shared_ptr<const std::vector<std::byte>>> keep_alive_;  // client arrays in use
+};
+
+}  // namespace passim
