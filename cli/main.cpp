@@ -1,5 +1,7 @@
 // passim: the command line (docs/cli.md).
 //   passim run FILE.pass --out DIR     replay a trace: images + counters.json
+//   passim run FILE.trace --snapshot S replay an apitrace trace: snapshots + counters.json
+//   passim convert FILE.trace -o F.pass  an apitrace trace as a canonical .pass
 //   passim demo [--out DIR]            the main job: Figure 7's variants at 8 and 12 bits
 //   passim program NAME [...]          one of the papers' pass programs (--list)
 //   passim info                        machine profiles, widths, limits, calls
@@ -13,11 +15,13 @@
 #include <iostream>
 #include <sstream>
 
+#include "pipeline/apitrace_replay.hpp"
 #include "pipeline/calls.hpp"
 #include "pipeline/image_io.hpp"
 #include "pipeline/profile.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/trace.hpp"
+#include "cli/apitrace_command.hpp"
 #include "cli/args.hpp"
 #include "cli/cost_command.hpp"
 #include "cli/html_report.hpp"
@@ -317,10 +321,12 @@ int main(int argc, char** argv) {
   app.footer("Exit status: 0 ok, 1 trace or run error (message names file:line), 2 usage, "
              "3 output differs from --expect.\nDocs: README.md, docs/.");
 
-  auto* run = app.add_subcommand("run", "Replay a .pass trace: write its @output images and counters.json");
+  auto* run = app.add_subcommand(
+      "run", "Replay a .pass trace (its @output images and counters.json) or an apitrace .trace (docs/apitrace.md)");
   std::string trace_file, out_dir = "out", expect, record;
   bool strict = false, tiff = false, write_expected = false, quiet = false;
-  run->add_option("trace", trace_file, "The .pass trace to replay")->required();
+  ApitraceCommand ac;
+  run->add_option("trace", trace_file, "The .pass or apitrace .trace file to replay")->required();
   run->add_option("--out,-o", out_dir, "Directory for images and counters.json")->capture_default_str();
   run->add_flag("--strict", strict, "Make any GL error fatal (exit 1)");
   run->add_option("--expect", expect, "Check image hashes and counters against this JSON file (exit 3 if they differ)");
@@ -328,6 +334,30 @@ int main(int argc, char** argv) {
   run->add_flag("--tiff", tiff, "Write colour images wider than 8 bits as 16-bit TIFF instead of 16-bit PNG");
   run->add_flag("--write-expected", write_expected, "Also write DIR/expected.json (hashes and counters of this run)");
   run->add_flag("--quiet,-q", quiet, "Print nothing but errors");
+  // apitrace traces only: the framebuffer a .pass states in its header.
+  auto apitrace_options = [&ac](CLI::App* cmd) {
+    const char* group = "apitrace .trace options";
+    cmd->add_option("--bits", ac.bits, "Colour width of every channel, 1-16 (default: the visual's at the profile's)")
+        ->group(group);
+    cmd->add_option("--depth-bits", ac.depth_bits, "Depth width 0-32 (default: the visual's)")->group(group);
+    cmd->add_option("--stencil-bits", ac.stencil_bits, "Stencil width 0-8 (default: the visual's)")->group(group);
+    cmd->add_option("--accum-bits", ac.accum_bits, "Accumulation width 0 or 2-32 (default: the visual's)")->group(group);
+    cmd->add_option("--size", ac.size, "Window WIDTHxHEIGHT (default: the drawable's, from the first glViewport)")
+        ->group(group);
+    cmd->add_option("--profile", ac.profile, "Machine profile (passim info)")->group(group);
+    cmd->add_option("--snapshot", ac.snapshot,
+                    "Write the draw buffer after these calls: apitrace call-set syntax, e.g. 12,40-50/2,frame")
+        ->group(group);
+    cmd->add_option("--snapshot-at", ac.snapshot_at, "'flush': also after every glFlush and glFinish")->group(group);
+  };
+  apitrace_options(run);
+
+  auto* convert = app.add_subcommand("convert", "Write an apitrace .trace as the equivalent canonical .pass trace");
+  convert->add_option("trace", ac.trace, "The apitrace .trace file")->required();
+  convert->add_option("--out,-o", ac.pass_out, "The .pass file to write")->required();
+  convert->add_flag("--strict", ac.strict, "Make any unsupported call or GL error fatal (exit 1)");
+  convert->add_flag("--quiet,-q", ac.quiet, "Print nothing but errors");
+  apitrace_options(convert);
 
   auto* info = app.add_subcommand("info", "List machine profiles with their widths and limits");
   bool calls = false;
@@ -457,7 +487,29 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kUsage;
   }
-  if (*run) return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
+  if (*run) {
+    if (looks_like_apitrace(trace_file)) {
+      if (!expect.empty() || !record.empty() || write_expected) {
+        std::cerr << "passim run: --expect, --record and --write-expected are for .pass traces; "
+                     "'passim convert' turns a .trace into one\n";
+        return kUsage;
+      }
+      ac.trace = trace_file;
+      ac.out = out_dir;
+      ac.strict = strict;
+      ac.tiff = tiff;
+      ac.quiet = quiet;
+      return apitrace_run_command(ac);
+    }
+    for (const char* o : {"--bits", "--depth-bits", "--stencil-bits", "--accum-bits", "--size", "--profile",
+                          "--snapshot", "--snapshot-at"})
+      if (run->count(o) > 0) {
+        std::cerr << "passim run: " << o << " is for apitrace traces; a .pass trace states its settings in its header\n";
+        return kUsage;
+      }
+    return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
+  }
+  if (*convert) return apitrace_convert_command(ac);
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
   if (*html) {

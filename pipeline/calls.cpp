@@ -165,6 +165,9 @@ const std::vector<CallInfo>& table() {
       ROW(gluPerspective, "dddd", kNone),
       ROW(gluLookAt, "ddddddddd", kNone),
       // vertices
+      ROW(glRectf, "ffff", kNone),
+      ROW(glRectd, "dddd", kNone),
+      ROW(glRecti, "iiii", kNone),
       ROW(glBegin, "m", kNone),
       ROW(glEnd, "", kInBeginEnd),
       ROW(glVertex2f, "ff", kInBeginEnd),
@@ -173,6 +176,8 @@ const std::vector<CallInfo>& table() {
       ROW(glVertex2d, "dd", kInBeginEnd),
       ROW(glVertex3d, "ddd", kInBeginEnd),
       ROW(glVertex4d, "dddd", kInBeginEnd),
+      ROW(glVertex2i, "ii", kInBeginEnd),
+      ROW(glVertex3i, "iii", kInBeginEnd),
       ROW(glVertex2fv, "F2", kInBeginEnd),
       ROW(glVertex3fv, "F3", kInBeginEnd),
       ROW(glVertex4fv, "F4", kInBeginEnd),

@@ -118,6 +118,12 @@ class Context {
   void glVertex3f(GLfloat x, GLfloat y, GLfloat z);
   void glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w);
   void glVertex2d(GLdouble x, GLdouble y);
+  void glVertex2i(GLint x, GLint y);
+  void glVertex3i(GLint x, GLint y, GLint z);
+  // §2.9: Begin(POLYGON), the four corners counter-clockwise from (x1, y1), End.
+  void glRectf(GLfloat x1, GLfloat y1, GLfloat x2, GLfloat y2);
+  void glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2);
+  void glRecti(GLint x1, GLint y1, GLint x2, GLint y2);
   void glVertex3d(GLdouble x, GLdouble y, GLdouble z);
   void glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w);
   void glVertex2fv(const GLfloat* v);

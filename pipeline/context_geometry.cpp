@@ -245,6 +245,22 @@ void Context::glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_EN
 void Context::glVertex2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
 void Context::glVertex3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
 void Context::glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
+void Context::glVertex2i(GLint x, GLint y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
+void Context::glVertex3i(GLint x, GLint y, GLint z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
+
+void Context::glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2) {
+  PASSIM_ENTRY(x1, y1, x2, y2)
+  glBegin(GL_POLYGON);
+  glVertex2d(x1, y1);
+  glVertex2d(x2, y1);
+  glVertex2d(x2, y2);
+  glVertex2d(x1, y2);
+  glEnd();
+}
+// Float and integer coordinates are exact as doubles.
+void Context::glRectf(GLfloat x1, GLfloat y1, GLfloat x2, GLfloat y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
+void Context::glRecti(GLint x1, GLint y1, GLint x2, GLint y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
+
 void Context::glVertex2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
 void Context::glVertex3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
 void Context::glVertex4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) submit_vertex(Vec4(v[0], v[1], v[2], v[3])); }

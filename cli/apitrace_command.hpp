@@ -1,0 +1,22 @@
+// passim run FILE.trace and passim convert FILE.trace -o FILE.pass (docs/apitrace.md).
+#pragma once
+#include <string>
+
+namespace passim {
+
+struct ApitraceCommand {
+  std::string trace;
+  std::string out = "out";      // run: directory for snapshots and counters.json
+  std::string pass_out;          // convert: the .pass to write
+  std::string profile = "ideal";
+  std::string size;              // WxH; empty: the drawable's
+  std::string snapshot;          // apitrace call set
+  std::string snapshot_at;       // "flush"
+  int bits = 0, depth_bits = -1, stencil_bits = -1, accum_bits = -1;
+  bool strict = false, tiff = false, quiet = false;
+};
+
+int apitrace_run_command(const ApitraceCommand& c);
+int apitrace_convert_command(const ApitraceCommand& c);
+
+}  // namespace passim
