@@ -93,6 +93,9 @@ std::filesystem::path write_image(const CapturedImage& image, const std::filesys
   OIIO::ImageSpec spec(w, h, channels, type);
   if (image.plane == "depth") spec.channelnames = {"Z"};
   spec.attribute("Software", "passim");
+  // The codes are the framebuffer's, colour not multiplied by alpha: without this OpenImageIO
+  // takes RGBA data as premultiplied and divides the colour by alpha when it writes a PNG.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   if (!out->open(tmp.string(), spec))
     throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), out->geterror()));
   const void* data = !floats.empty() ? static_cast<const void*>(floats.data())

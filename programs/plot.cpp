@@ -49,8 +49,10 @@ void write_strip(const std::filesystem::path& file, const std::vector<std::files
   using namespace OIIO;
   std::vector<ImageBuf> cells;
   int width = 0, height = 0;
+  ImageSpec config;  // the files' colour as stored, not multiplied by alpha
+  config.attribute("oiio:UnassociatedAlpha", 1);
   for (const auto& path : images) {
-    ImageBuf b(path.string());
+    ImageBuf b(path.string(), 0, 0, nullptr, &config);
     if (!b.read(0, 0, 0, 3, true, TypeDesc::UINT8))
       throw std::runtime_error(fmt::format("cannot read {}: {}", path.string(), b.geterror()));
     width += b.spec().width + (cells.empty() ? 0 : 4);
