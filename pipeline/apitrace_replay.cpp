@@ -279,8 +279,8 @@ class ApitraceReplayer {
       case 'e': case 'm': case 'n': case 'b': case 'x': case 'z': case 'i': case 'u': case 'c': {
         if (!a->is_integer()) return bad("is not an integer or enum");
         const std::int64_t x = a->as_integer();
-        const std::int64_t lo = (p.kind == 'i' || p.kind == 'x' || p.kind == 'e' || p.kind == 'm' || p.kind == 'n' || p.kind == 'b')
-                                    ? std::numeric_limits<std::int32_t>::min() : 0;
+        // GLint may be negative; GLenum, GLbitfield, GLuint, GLboolean and GLubyte may not.
+        const std::int64_t lo = p.kind == 'i' || p.kind == 'x' ? std::numeric_limits<std::int32_t>::min() : 0;
         const std::int64_t hi = p.kind == 'c' ? 255 : p.kind == 'z' ? 255 : p.kind == 'i' ? std::numeric_limits<std::int32_t>::max()
                                                                        : std::numeric_limits<std::uint32_t>::max();
         if (x < lo || x > hi) return bad(fmt::format("= {} is out of its type's range", x));
