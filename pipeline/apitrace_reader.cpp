@@ -25,6 +25,12 @@ constexpr std::uint64_t kMaxArgs = 256;
 FormatError::FormatError(long long c, const std::string& message)
     : std::runtime_error(c >= 0 ? fmt::format("call {}: {}", c, message) : message), call(c) {}
 
+namespace {
+// Where the stream stopped, for messages: snappy chunks decompress whole, so a file cut
+// inside its first chunk stops before any call.
+std::string before_first_call(const std::string& message) { return "before the first call: " + message; }
+}  // namespace
+
 bool Value::is_integer() const {
   switch (kind) {
     case Kind::SInt: case Kind::UInt: case Kind::Enum: case Kind::Bitmask: case Kind::False: case Kind::True:
@@ -60,6 +66,7 @@ Reader::Reader(std::istream& in) : in_(in) {
          "'apitrace repack' from a current apitrace");
   if (magic[0] != 'a' || magic[1] != 't')
     fail("not an apitrace trace: it does not start with the snappy stream header 'at'");
+  magic_read_ = true;
   const std::uint64_t v = uint();
   if (v < kOldestVersion || v > kNewestVersion)
     fail(fmt::format("apitrace format version {} is not supported (passim reads versions {} to {})", v,
@@ -77,7 +84,10 @@ Reader::Reader(std::istream& in) : in_(in) {
 
 Reader::~Reader() = default;
 
-void Reader::fail(const std::string& message) const { throw FormatError(current_call_, message); }
+void Reader::fail(const std::string& message) const {
+  if (current_call_ < 0 && magic_read_) throw FormatError(current_call_, before_first_call(message));
+  throw FormatError(current_call_, message);
+}
 
 bool Reader::fill() {
   if (eof_) return false;

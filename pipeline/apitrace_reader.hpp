@@ -87,6 +87,7 @@ class Reader {
   std::string chunk_;
   std::size_t pos_ = 0;
   bool eof_ = false;
+  bool magic_read_ = false;
   unsigned version_ = 0;
   std::map<std::string, std::string> properties_;
   std::unordered_map<std::uint64_t, std::shared_ptr<const FunctionSig>> functions_;

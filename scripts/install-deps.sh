@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages passim builds with, if any is missing.
-# --test: also what the test suite needs beyond the build (Chromium for the HTML report test).
+# --test: also what the test suite needs beyond the build (Chromium for the HTML report test,
+#         clang and its runtime for the libFuzzer targets).
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgl-dev libglm-dev libopenimageio-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev libsnappy-dev fonts-dejavu-core)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(chromium)
+  packages+=(chromium clang libclang-rt-14-dev)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -579,17 +579,33 @@ TEST(ApitraceConvert, PassReplaysToTheSameBitsAndCounters) {
   }
 }
 
+// The recorded stream cut in the middle (after call 40) and packed again: the error names the
+// call being read and the replay keeps what came before it, the snapshot at call 17 included.
 TEST(ApitraceReplayErrors, TruncatedTraceKeepsWhatWasReplayed) {
   std::ifstream in(kData / "blend_masks.trace", std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // Keep the header and the first chunk's length, cut the chunk: the reader reports truncation.
-  std::istringstream cut(bytes.substr(0, bytes.size() / 2));
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  StreamBuilder s;
+  for (std::size_t at = 2; at + 4 <= file.size();) {  // the decompressed stream, chunk by chunk
+    std::uint32_t n = 0;
+    for (int k = 0; k < 4; ++k) n |= static_cast<std::uint32_t>(static_cast<std::uint8_t>(file[at + k])) << (8 * k);
+    std::string chunk;
+    ASSERT_TRUE(snappy::Uncompress(file.data() + at + 4, n, &chunk));
+    s.raw += chunk;
+    at += 4 + n;
+  }
+  const std::string marker = "glPopMatrix";  // the name, written once, at the first call to it (28)
+  const std::size_t pos = s.raw.find(marker);
+  ASSERT_NE(pos, std::string::npos);
+  s.raw.resize(pos + marker.size() + 3);
+  std::istringstream cut(s.file(4096));
   ApitraceOptions o;
-  o.snapshot = CallSet::parse("*");
+  o.snapshot = CallSet::parse("17");
   const ApitraceReplay r = replay_apitrace(cut, "cut.trace", o);
   ASSERT_TRUE(r.error);
-  EXPECT_NE(r.error->find("cut.trace"), std::string::npos) << *r.error;
-  EXPECT_NE(r.error->find("truncated"), std::string::npos) << *r.error;
+  EXPECT_NE(r.error->find("cut.trace: call 28: truncated"), std::string::npos) << *r.error;
+  ASSERT_EQ(r.result.images.size(), 1u);
+  EXPECT_EQ(r.result.images[0].name, "0000000017");
+  EXPECT_EQ(r.calls, 28u);
 }
 
 TEST(ApitraceReplayErrors, UnsupportedCallsAreSummarisedOrFatalWhenStrict) {
