@@ -452,6 +452,19 @@ struct Expected {
   void put(int x, int y, int c, int v) { rgba[static_cast<std::size_t>((y * width + x) * 4 + c)] = v; }
 };
 
+// Replays a one-frame program and checks its frame equals `e` in every bit.
+ApitraceReplay expect_frame_equals(const std::string& program, const Expected& e) {
+  const fs::path trace = kData / (program + ".trace");
+  const auto swaps = calls_named(trace, "glXSwapBuffers");
+  EXPECT_EQ(swaps.size(), 1u);
+  ApitraceReplay r = replay_at(trace, "frame");
+  if (swaps.empty()) return r;
+  const Agreement a = compare(snapshot(r, swaps[0]), e.rgba, e.width, e.height);
+  EXPECT_EQ(a.identical, 1.0) << program;
+  EXPECT_EQ(a.largest, 0) << program;
+  return r;
+}
+
 TEST(RecordedImaging, ColourTableAndConvolutionFromTheSpec) {
   // The program's input, table and kernel (tests/data/apitrace/programs/imaging_table_convolution.cpp).
   auto input = [](int x, int y, int c) {
@@ -486,13 +499,7 @@ TEST(RecordedImaging, ColourTableAndConvolutionFromTheSpec) {
             }
           e.put(pass == 0 ? 20 + i : 1 + i, pass == 0 ? 1 + j : 16 + j, c, nearest_code(sum * 255.0));
         }
-  const fs::path trace = kData / "imaging_table_convolution.trace";
-  const auto swaps = calls_named(trace, "glXSwapBuffers");
-  ASSERT_EQ(swaps.size(), 1u);
-  const ApitraceReplay r = replay_at(trace, "frame");
-  const Agreement a = compare(snapshot(r, swaps[0]), e.rgba, e.width, e.height);
-  EXPECT_EQ(a.identical, 1.0);
-  EXPECT_EQ(a.largest, 0);
+  expect_frame_equals("imaging_table_convolution", e);
 }
 
 TEST(RecordedImaging, ColourMatrixHistogramAndMinmaxFromTheSpec) {
@@ -529,13 +536,7 @@ TEST(RecordedImaging, ColourMatrixHistogramAndMinmaxFromTheSpec) {
         hi[static_cast<std::size_t>(c)] = std::max(hi[static_cast<std::size_t>(c)], v[static_cast<std::size_t>(c)]);
       }
     }
-  const fs::path trace = kData / "imaging_matrix_histogram.trace";
-  const auto swaps = calls_named(trace, "glXSwapBuffers");
-  ASSERT_EQ(swaps.size(), 1u);
-  const ApitraceReplay r = replay_at(trace, "frame");
-  const Agreement a = compare(snapshot(r, swaps[0]), e.rgba, e.width, e.height);
-  EXPECT_EQ(a.identical, 1.0);
-  EXPECT_EQ(a.largest, 0);
+  const ApitraceReplay r = expect_frame_equals("imaging_matrix_histogram", e);
   // The histogram and minmax as the program read them back (glGetHistogram, glGetMinmax).
   Context& ctx = *r.result.context;
   std::array<std::array<GLuint, 4>, 32> got{};

@@ -28,12 +28,7 @@ static void draw_scene(float dx, float dy) {
 int main() {
   GlWindow w = open_window(64, 64, {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8,
                                      GLX_ACCUM_RED_SIZE, 16, GLX_ACCUM_GREEN_SIZE, 16, GLX_ACCUM_BLUE_SIZE, 16});
-  glViewport(0, 0, 64, 64);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, 64, 0, 64, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  window_coordinates(w);
   glClearColor(16 / 255.0f, 32 / 255.0f, 48 / 255.0f, 1.0f);
   glClearAccum(0.0f, 0.0f, 0.0f, 0.0f);
   glClear(GL_ACCUM_BUFFER_BIT);

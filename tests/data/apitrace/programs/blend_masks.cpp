@@ -9,12 +9,7 @@
 int main() {
   GlWindow w = open_window(64, 64, {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
                                      GLX_BLUE_SIZE, 8, GLX_ALPHA_SIZE, 8});
-  glViewport(0, 0, 64, 64);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, 64, 0, 64, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  window_coordinates(w);
   glClearColor(0.25f, 0.5f, 0.75f, 0.5f);
   glClear(GL_COLOR_BUFFER_BIT);
 

@@ -49,6 +49,16 @@ inline GlWindow open_window(int width, int height, std::vector<int> attributes) 
   return w;
 }
 
+// Viewport and projections for drawing in window coordinates: object (x, y) = pixel (x, y).
+inline void window_coordinates(const GlWindow& w) {
+  glViewport(0, 0, w.width, w.height);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, w.width, 0, w.height, -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+}
+
 // Reads the current read buffer as RGBA8 and writes it (top row first) to `file`.
 inline void save_reference(const GlWindow& w, const char* file) {
   std::vector<unsigned char> pixels(static_cast<size_t>(w.width) * w.height * 4);

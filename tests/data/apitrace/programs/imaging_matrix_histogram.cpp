@@ -16,12 +16,7 @@ static GLubyte input(int x, int y, int c) {  // 16x12 RGBA (the test repeats thi
 int main() {
   GlWindow w = open_window(40, 16, {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
                                      GLX_BLUE_SIZE, 8, GLX_ALPHA_SIZE, 8});
-  glViewport(0, 0, 40, 16);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, 40, 0, 16, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  window_coordinates(w);
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glClear(GL_COLOR_BUFFER_BIT);
 

@@ -18,12 +18,7 @@ static GLubyte input(int x, int y, int c) {
 int main() {
   GlWindow w = open_window(48, 32, {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8,
                                      GLX_BLUE_SIZE, 8});
-  glViewport(0, 0, 48, 32);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, 48, 0, 32, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  window_coordinates(w);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
 

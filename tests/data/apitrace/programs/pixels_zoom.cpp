@@ -6,12 +6,7 @@
 
 int main() {
   GlWindow w = open_window(80, 64, {GLX_RGBA, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8});
-  glViewport(0, 0, 80, 64);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, 80, 0, 64, -1, 1);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  window_coordinates(w);
   glClearColor(26 / 255.0f, 51 / 255.0f, 77 / 255.0f, 1.0f);  // whole codes (A1: Mesa rounds 0.3 to 76)
   glClear(GL_COLOR_BUFFER_BIT);
 
