@@ -677,7 +677,12 @@ Vec4 Context::array_value_at(const ClientArray& a, int i, bool normalise) const 
 
 void Context::check_array_bounds(int max_index) const {
   auto check = [&](const ClientArray& a, const char* name) {
-    if (!a.enabled || a.extent == SIZE_MAX) return;
+    if (!a.enabled) return;
+    // An enabled array without a pointer: undefined in GL (a crash on real drivers).
+    if (!a.pointer)
+      throw ClientDataError(fmt::format("{} draws with the {} array enabled but no {} pointer given", current_call_,
+                                        name, name));
+    if (a.extent == SIZE_MAX) return;
     const std::size_t elem = static_cast<std::size_t>(type_size(a.type) * a.size);
     const std::size_t stride = a.stride ? static_cast<std::size_t>(a.stride) : elem;
     const std::size_t need = static_cast<std::size_t>(max_index) * stride + elem;

@@ -61,6 +61,10 @@ TEST(TraceParse, ErrorsNameTheLine) {
   expect_error("passim-trace 1\n@framebuffer 8x8 depth=40\n", 2, "depth width 40");
   expect_error("passim-trace 1\n@profile octane\n", 2, "unknown machine profile 'octane'");
   expect_error(h + "glClear(GL_COLOR_BUFFER_BIT)\n@framebuffer 4x4\n", 4, "must come before the first GL call");
+  // Found by fuzzing: an enabled array that was never given a pointer (read through null).
+  expect_error(h + "glEnableClientState(GL_VERTEX_ARRAY)\nglEnableClientState(GL_COLOR_ARRAY)\n"
+                   "glVertexPointer(2, GL_FLOAT, 0, {0, 0, 1, 0, 0, 1})\nglDrawArrays(GL_TRIANGLES, 0, 3)\n",
+               6, "color array enabled but no color pointer given");
   expect_error(h + "glEnableClientState(GL_VERTEX_ARRAY)\nglVertexPointer(2, GL_FLOAT, 0, {0, 0, 1, 0})\n"
                    "glDrawArrays(GL_TRIANGLES, 0, 3)\n",
                5, "reads element 2 of the vertex array, but only 16 bytes were given");
