@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/cost.hpp"
+#include "pipeline/apitrace_replay.hpp"
 #include "pipeline/trace.hpp"
 
 namespace passim {
@@ -161,10 +162,19 @@ int cost_command(const CostCommand& c) {
     std::vector<FrameCost> frames;
     std::vector<std::string> titles;
     if (!c.trace.empty()) {
-      ReplayResult replay = replay_trace(c.trace);
+      ReplayResult replay;
+      std::string what = "replayed at its own widths";
+      if (looks_like_apitrace(c.trace)) {  // docs/apitrace.md: the visual's widths on the ideal profile
+        ApitraceReplay a = replay_apitrace(c.trace, ApitraceOptions{});
+        if (a.error) throw std::runtime_error(*a.error);
+        replay = std::move(a.result);
+        what = fmt::format("apitrace, {} calls, {} frames, all counted", a.calls, a.frames);
+      } else {
+        replay = replay_trace(c.trace);
+      }
       for (const std::string& name : c.profiles) {
         frames.push_back(frame_cost(replay.context->passes(), timed_profile(name)));
-        titles.push_back(fmt::format("trace {} (replayed at its own widths)", c.trace));
+        titles.push_back(fmt::format("trace {} ({})", c.trace, what));
       }
     } else {
       for (const std::string& name : c.profiles) {

@@ -8,7 +8,7 @@
 namespace passim {
 
 struct CostCommand {
-  std::string trace;             // a .pass file, or empty with a program
+  std::string trace;             // a .pass or apitrace .trace file, or empty with a program
   ProgramOptions program;        // used when `trace` is empty
   bool program_given = false;
   bool bits_given = false;       // else the first profile's colour width

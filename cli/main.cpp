@@ -405,7 +405,7 @@ int main(int argc, char** argv) {
   CostCommand cc;
   std::string cost_profiles = "octane-vpro8", cost_filter;
   bool cost_csv = false, cost_json = false, cost_markdown = false;
-  cost->add_option("trace", cc.trace, "A .pass trace (or give --program)");
+  cost->add_option("trace", cc.trace, "A .pass or apitrace .trace file (or give --program)");
   cost->add_option("--program", cc.program.program, "A program instead of a trace (passim program --list)");
   cost->add_option("--filter", cost_filter, "The program's footprint NxN");
   cost->add_option("--scene", cc.program.scene, "The program's scene")->capture_default_str();

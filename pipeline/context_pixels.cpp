@@ -160,8 +160,15 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
   const double zx = zoom_x_, zy = zoom_y_;
   auto pixel_range = [](double a, double b, int limit, int& lo, int& hi) {
     const double mn = std::min(a, b), mx = std::max(a, b);
-    lo = std::max(0, static_cast<int>(std::ceil(mn - 0.5)));
-    hi = std::min(limit - 1, static_cast<int>(std::ceil(mx - 0.5)) - 1);
+    // Clamped in double first: a far raster position or a huge zoom must not overflow int
+    // (found by fuzzing); a NaN bound gives an empty range.
+    const double first = std::ceil(mn - 0.5), last = std::ceil(mx - 0.5) - 1.0;
+    if (!(first <= last)) {
+      lo = 0, hi = -1;
+      return;
+    }
+    lo = static_cast<int>(std::clamp(first, 0.0, static_cast<double>(limit)));
+    hi = static_cast<int>(std::clamp(last, -1.0, static_cast<double>(limit - 1)));
   };
   const std::uint32_t z_code = fb_.config.depth_bits ? float_to_fixed(rp.z, fb_.config.depth_bits) : 0;
   std::uint16_t raster_codes[4];

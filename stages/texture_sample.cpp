@@ -199,7 +199,8 @@ TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t
     case GL_NEAREST_MIPMAP_NEAREST:
     case GL_LINEAR_MIPMAP_NEAREST: {
       // A9: d = b if λ <= 1/2, else ceil(b + λ + 1/2) − 1, at most q.
-      int d = lambda <= 0.5 ? b : static_cast<int>(std::ceil(b + lambda + 0.5)) - 1;
+      // λ above 64 (or NaN, from NaN coordinates) is past every level: no int overflow.
+      int d = lambda <= 0.5 ? b : !(lambda < 64.0) ? last_level : static_cast<int>(std::ceil(b + lambda + 0.5)) - 1;
       d = std::min(d, last_level);
       const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_NEAREST ? GL_NEAREST : GL_LINEAR;
       return filter_level(tex, tex.levels[d], dims, f, s, t, r, counters);

@@ -40,6 +40,24 @@ TEST(Pixels, DrawPixelsAtTheRasterPositionWithZoom) {
   EXPECT_EQ(pixel(ctx, 1, 1)[0], 0u);
 }
 
+// Found by fuzzing: a zoom of 4e9 put the group's pixel range past int. Group (0, 0) now
+// covers [1, 4e9+1) in both directions: every pixel from (1, 1) up, clipped to the window.
+TEST(Pixels, HugeZoomCoversTheWindowWithoutOverflow) {
+  Context ctx(test::small_config(6, 6));
+  test::window_projection(ctx);
+  ctx.glRasterPos2i(1, 1);
+  ctx.glPixelZoom(4e9f, 4e9f);
+  ctx.glDrawPixels(2, 2, GL_RGBA, GL_UNSIGNED_BYTE, kImage);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(pixel(ctx, 1, 1)[0], 10u);
+  EXPECT_EQ(pixel(ctx, 5, 5)[0], 10u);
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 0u);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 25u);  // the 5x5 pixels of group (0, 0)
+  ctx.glPixelZoom(-4e9f, -4e9f);  // mirrored: [1 - 4e9, 1): pixel 0 only, in x and in y
+  ctx.glDrawPixels(2, 2, GL_RGBA, GL_UNSIGNED_BYTE, kImage);
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 10u);
+}
+
 TEST(Pixels, RasterPositionIsRoundedA20AndCanBeInvalid) {
   Context ctx(test::small_config(4, 4));
   test::window_projection(ctx);
