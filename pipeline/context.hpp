@@ -146,6 +146,21 @@ class Context {
   void glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q);
   void glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q);
   void glTexCoord2fv(const GLfloat* v);
+  // The vector and integer variants real GL 1.x programs use (replayed from apitrace traces).
+  void glColor3ubv(const GLubyte* v);
+  void glColor4ubv(const GLubyte* v);
+  void glColor3dv(const GLdouble* v);
+  void glColor4dv(const GLdouble* v);
+  void glVertex2dv(const GLdouble* v);
+  void glVertex3dv(const GLdouble* v);
+  void glVertex2iv(const GLint* v);
+  void glVertex3iv(const GLint* v);
+  void glNormal3dv(const GLdouble* v);
+  void glTexCoord2d(GLdouble s, GLdouble t);
+  void glTexCoord2i(GLint s, GLint t);
+  void glTexCoord2dv(const GLdouble* v);
+  void glTexCoord3fv(const GLfloat* v);
+  void glTexCoord4fv(const GLfloat* v);
 
   // ---- vertex arrays (§2.8) ----
   void glEnableClientState(GLenum array);

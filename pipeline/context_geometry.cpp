@@ -223,12 +223,23 @@ void Context::glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a) {
   PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, a / 255.0)
 }
 void Context::glColor3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
+void Context::glColor3ubv(const GLubyte* v) {
+  PASSIM_ENTRY(ArrayArg<GLubyte>{v, 3})
+  PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, 1.0)
+}
+void Context::glColor4ubv(const GLubyte* v) {
+  PASSIM_ENTRY(ArrayArg<GLubyte>{v, 4})
+  PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, v[3] / 255.0)
+}
+void Context::glColor3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
+void Context::glColor4dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 4}) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
 void Context::glColor4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
 #undef PASSIM_SET_COLOR
 
 void Context::glNormal3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
 void Context::glNormal3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
 void Context::glNormal3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) current_.normal = Vec3(v[0], v[1], v[2]); }
+void Context::glNormal3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) current_.normal = Vec3(v[0], v[1], v[2]); }
 
 void Context::glTexCoord1f(GLfloat s) { PASSIM_ENTRY(s) current_.texcoord = Vec4(s, 0.0, 0.0, 1.0); }
 void Context::glTexCoord2f(GLfloat s, GLfloat t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
@@ -236,6 +247,11 @@ void Context::glTexCoord3f(GLfloat s, GLfloat t, GLfloat r) { PASSIM_ENTRY(s, t,
 void Context::glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
 void Context::glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
 void Context::glTexCoord2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
+void Context::glTexCoord3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) current_.texcoord = Vec4(v[0], v[1], v[2], 1.0); }
+void Context::glTexCoord4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) current_.texcoord = Vec4(v[0], v[1], v[2], v[3]); }
+void Context::glTexCoord2d(GLdouble s, GLdouble t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
+void Context::glTexCoord2i(GLint s, GLint t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
+void Context::glTexCoord2dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 2}) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
 
 // ---------------------------------------------------------------- vertices and primitives
 
@@ -245,6 +261,10 @@ void Context::glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_EN
 void Context::glVertex2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
 void Context::glVertex3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
 void Context::glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
+void Context::glVertex2dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
+void Context::glVertex2iv(const GLint* v) { PASSIM_ENTRY(ArrayArg<GLint>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3iv(const GLint* v) { PASSIM_ENTRY(ArrayArg<GLint>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
 void Context::glVertex2i(GLint x, GLint y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
 void Context::glVertex3i(GLint x, GLint y, GLint z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
 
@@ -450,11 +470,15 @@ RasterVertex Context::to_window(const ProcessedVertex& v, int face) const {
   // §2.10.1: viewport transformation of normalised device coordinates.
   RasterVertex r;
   const double iw = 1.0 / v.clip.w;
+  // A subnormal w (found by fuzzing) has an infinite reciprocal: divide instead, which keeps
+  // x/w within [-1, 1] after clipping. Every other w keeps the reciprocal, and its bits.
+  const bool tiny_w = !std::isfinite(iw);
+  auto ndc = [&](double c) { return tiny_w ? c / v.clip.w : c * iw; };
   const double half_w = viewport_.width / 2.0, half_h = viewport_.height / 2.0;
-  r.x = (v.clip.x * iw) * half_w + (viewport_.x + half_w);
-  r.y = (v.clip.y * iw) * half_h + (viewport_.y + half_h);
+  r.x = ndc(v.clip.x) * half_w + (viewport_.x + half_w);
+  r.y = ndc(v.clip.y) * half_h + (viewport_.y + half_h);
   const double n = viewport_.near_val, f = viewport_.far_val;
-  r.z = (v.clip.z * iw) * ((f - n) / 2.0) + (n + f) / 2.0;
+  r.z = ndc(v.clip.z) * ((f - n) / 2.0) + (n + f) / 2.0;
   r.w = v.clip.w;
   r.color = v.color[face];
   r.tex = v.tex;
@@ -494,7 +518,13 @@ void Context::draw_point(const ProcessedVertex& v) {
   prepare_fragment_stages(options);
   ProcessedVertex lit = v;
   if (lit.light_pending) light_pending_vertex(lit, 0);
-  rasterize_point(to_window(lit, 0), polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
+  const RasterVertex w = to_window(lit, 0);
+  if (!w.finite_position()) {
+    warn_once("a vertex with NaN or infinite window coordinates was dropped (its primitive is counted as clipped out)");
+    ++c.primitives_clipped_out;
+    return;
+  }
+  rasterize_point(w, polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
 }
 
 void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
@@ -520,7 +550,14 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   // Window coordinates, then facing from the signed area (§3.5.1, eq. 3.6).
   std::vector<RasterVertex>& win = scratch_->window;
   win.resize(poly.size());
-  for (std::size_t k = 0; k < poly.size(); ++k) win[k] = to_window(poly[k], 0);
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    win[k] = to_window(poly[k], 0);
+    if (!win[k].finite_position()) {
+      warn_once("a vertex with NaN or infinite window coordinates was dropped (its primitive is counted as clipped out)");
+      ++c.primitives_clipped_out;
+      return;
+    }
+  }
   double area = 0.0;
   for (std::size_t k = 0; k < win.size(); ++k) {
     const RasterVertex& a = win[k];

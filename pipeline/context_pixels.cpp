@@ -31,8 +31,8 @@ void Context::set_raster_position(const Vec4& object) {
     return;
   }
   if (v.light_pending) light_pending_vertex(v, 0);
-  raster_.valid = true;
   raster_.window = to_window(v, 0);
+  raster_.valid = raster_.window.finite_position();  // w = 0 on the boundary: no position
   raster_.color = v.color[0];
 }
 

@@ -5,6 +5,7 @@
 // perspective-correct (A6), polygon offset in the max form (A7).
 #pragma once
 #include <array>
+#include <cmath>
 
 #include "pipeline/counters.hpp"
 #include "pipeline/state.hpp"
@@ -18,6 +19,9 @@ struct RasterVertex {
   Vec4 color{};                      // clamped, quantised colour
   Vec4 tex{0.0, 0.0, 0.0, 1.0};      // texture coordinates (s, t, r, q)
   double eye_z = 0.0;                // eye-coordinate z, for fog
+
+  // False for w = 0 on the clip boundary (0/0): such a vertex cannot be placed in the window.
+  bool finite_position() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
 
 struct RasterTarget {

@@ -296,3 +296,24 @@ TEST(BadInput, HugeViewportIsClampedAndFarAwayGeometryIsHarmless) {
   ctx.glEnd();
   EXPECT_EQ(ctx.total_counters().fragments_generated, 0u);
 }
+
+// Found by fuzzing: a clip w below the smallest normal double has an infinite reciprocal. A
+// vertex (-w, -w, 0, w) with w = 1e-310 is the NDC corner (-1, -1) as (-1, -1, 0, 1) is, and
+// must draw the same triangle.
+TEST(Raster, SubnormalClipWPlacesTheVertexLikeItsNormalisedForm) {
+  auto draw = [](double w) {
+    Context ctx(test::small_config(16, 16));
+    ctx.glColor3f(1, 1, 1);
+    ctx.glBegin(GL_TRIANGLES);
+    ctx.glVertex4d(-w, -w, 0, w);
+    ctx.glVertex4d(1, -1, 0, 1);
+    ctx.glVertex4d(0, 1, 0, 1);
+    ctx.glEnd();
+    return ctx.framebuffer().color[0].rgba;
+  };
+  const auto normal = draw(1.0), tiny = draw(1e-310);
+  EXPECT_EQ(tiny, normal);
+  // The triangle covers the window's bottom corners' half: pixel (1, 0) is inside, (0, 15) not.
+  EXPECT_EQ(normal[4 * 1], 255u);
+  EXPECT_EQ(normal[4 * (15 * 16)], 0u);
+}

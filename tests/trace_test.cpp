@@ -251,3 +251,29 @@ TEST(TraceParse, MeshDirectiveDrawsAnObjFile) {
     EXPECT_EQ(e.line, 2);
   }
 }
+
+// The vector and integer variants draw exactly what their scalar forms draw (Table 2.6 for
+// unsigned bytes: c / 255).
+TEST(TraceParse, VectorAndIntegerVariantsEqualTheirScalarForms) {
+  const std::string h = std::string("passim-trace 1\n@framebuffer 8x8 color=8 depth=0 stencil=0 accum=0 double=no\n") +
+                        "glMatrixMode(GL_PROJECTION)\nglOrtho(0, 8, 0, 8, -1, 1)\nglMatrixMode(GL_MODELVIEW)\n";
+  const std::string scalar = h +
+      "glBegin(GL_TRIANGLES)\nglColor3ub(51, 102, 153)\nglNormal3d(0, 0, 1)\nglTexCoord2d(0.5, 0.25)\n"
+      "glVertex2d(0, 0)\nglColor4ub(10, 20, 30, 40)\nglVertex3d(8, 0, 0)\nglColor3d(0.5, 0.25, 1)\nglTexCoord2i(1, 2)\n"
+      "glVertex2i(0, 8)\nglColor4d(1, 0.5, 0, 1)\nglTexCoord3f(1, 2, 3)\nglVertex2f(8, 8)\nglTexCoord4f(1, 2, 3, 4)\n"
+      "glVertex3i(8, 0, 0)\nglVertex2f(0, 8)\nglEnd()\n@output img color\n";
+  const std::string vector = h +
+      "glBegin(GL_TRIANGLES)\nglColor3ubv({51, 102, 153})\nglNormal3dv({0, 0, 1})\nglTexCoord2dv({0.5, 0.25})\n"
+      "glVertex2dv({0, 0})\nglColor4ubv({10, 20, 30, 40})\nglVertex3dv({8, 0, 0})\nglColor3dv({0.5, 0.25, 1})\n"
+      "glTexCoord2i(1, 2)\nglVertex2iv({0, 8})\nglColor4dv({1, 0.5, 0, 1})\nglTexCoord3fv({1, 2, 3})\nglVertex2f(8, 8)\n"
+      "glTexCoord4fv({1, 2, 3, 4})\nglVertex3iv({8, 0, 0})\nglVertex2f(0, 8)\nglEnd()\n@output img color\n";
+  const ReplayResult a = replay_trace_text(scalar, "scalar.pass", "."), b = replay_trace_text(vector, "vector.pass", ".");
+  ASSERT_EQ(a.images.size(), 1u);
+  ASSERT_EQ(b.images.size(), 1u);
+  EXPECT_EQ(a.images[0].codes, b.images[0].codes);
+  EXPECT_TRUE(a.context->error_log().empty());
+  // Pixel (0, 0), centre (0.5, 0.5), of the first triangle (0,0) (8,0) (0,8): weights 7/8,
+  // 1/16, 1/16 of red codes 51, 10 and 128 (0.5 rounded up, A1 and A4):
+  // 44.625 + 0.625 + 8 = 53.25 -> 53.
+  EXPECT_EQ(a.images[0].codes[0], 53u);
+}
