@@ -645,5 +645,19 @@ TEST(ApitraceReplayErrors, UnsupportedCallsAreSummarisedOrFatalWhenStrict) {
   EXPECT_NE(r.error->find("call 1: glFrobnicateEXT is not modelled"), std::string::npos) << *r.error;
 }
 
+// A call recorded with another signature than GL's: a message with its number, exit 1.
+TEST(ApitraceReplayErrors, WrongSignatureNamesTheCall) {
+  StreamBuilder s;
+  s.header();
+  s.enter_new(0, "glClearColor", {"red", "green", "blue"});
+  s.byte(0);
+  s.leave(0);
+  std::istringstream in(s.file());
+  const ApitraceReplay r = replay_apitrace(in, "sig.trace", ApitraceOptions{});
+  ASSERT_TRUE(r.error);
+  EXPECT_NE(r.error->find("sig.trace: call 0: glClearColor is recorded with 3 arguments; it takes 4"), std::string::npos)
+      << *r.error;
+}
+
 }  // namespace
 }  // namespace passim
