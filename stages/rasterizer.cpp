@@ -48,8 +48,14 @@ void constant_color_codes(const Vec4& c, const RasterTarget& t, std::uint16_t ou
 }  // namespace
 
 std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits) {
+  // Guard band: a vertex of a primitive that can touch a window (at most 4096 wide, viewports
+  // at most as large) lies well inside ±2^17. Beyond it only the clipper's rounding on
+  // degenerate input reaches (found by fuzzing, −2.5e30); clamping keeps the edge products
+  // of snapped coordinates (2^31 · 2^31 at 12 sub-pixel bits) inside 64 bits.
+  constexpr double kGuard = 131072.0;
+  const double x = std::isnan(window_coordinate) ? 0.0 : std::clamp(window_coordinate, -kGuard, kGuard);
   const double scale = static_cast<double>(std::int64_t{1} << subpixel_bits);  // 2^bits, exact
-  return 2 * static_cast<std::int64_t>(round_half_up(window_coordinate * scale));
+  return 2 * static_cast<std::int64_t>(round_half_up(x * scale));
 }
 
 namespace {

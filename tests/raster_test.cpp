@@ -317,3 +317,14 @@ TEST(Raster, SubnormalClipWPlacesTheVertexLikeItsNormalisedForm) {
   EXPECT_EQ(normal[4 * 1], 255u);
   EXPECT_EQ(normal[4 * (15 * 16)], 0u);
 }
+
+// The guard band of snapping: window coordinates are snapped to 1/2^b pixel in doubled units
+// (A5), and clamped to ±2^17 first (found by fuzzing: the clipper's rounding on degenerate
+// input produced −2.5e30, past 64 bits once snapped).
+TEST(Raster, SnappingHasAGuardBand) {
+  EXPECT_EQ(snap_coordinate(3.5, 4), 112);           // 3.5 · 16 = 56, doubled
+  EXPECT_EQ(snap_coordinate(-1.03125, 4), -32);      // −16.5 rounds half up to −16
+  EXPECT_EQ(snap_coordinate(131072.0, 12), std::int64_t{1} << 30);
+  EXPECT_EQ(snap_coordinate(-2.5e30, 12), -(std::int64_t{1} << 30));
+  EXPECT_EQ(snap_coordinate(1e300, 4), std::int64_t{1} << 22);
+}
