@@ -276,6 +276,12 @@ class Context {
   void glCopyColorTable(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width);
   void glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params);
   void glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* params);
+  void glCopyColorSubTable(GLenum target, GLsizei start, GLint x, GLint y, GLsizei width);
+  // §3.6.3 / §6.1.4: the table or filter as stored, packed like ReadPixels without pixel transfer.
+  void glGetColorTable(GLenum target, GLenum format, GLenum type, void* table);
+  void glGetConvolutionFilter(GLenum target, GLenum format, GLenum type, void* image);
+  void glGetSeparableFilter(GLenum target, GLenum format, GLenum type, void* row, void* column, void* span);
+  void glCopyConvolutionFilter1D(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width);
   void glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                              const void* image);
   void glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,

@@ -21,6 +21,24 @@ int table_index(GLenum target) {
   }
 }
 bool is_power_of_two_or_zero(int v) { return v >= 0 && (v & (v - 1)) == 0; }
+
+// §6.1.4, Table 6.1: a table's or filter's components as the RGBA a query returns:
+// luminance and intensity in R; components the base format lacks are 0 (R, G, B) or 1 (A).
+Rgba returned_components(GLenum base, const Rgba& c) {
+  switch (base) {
+    case GL_ALPHA: return {0, 0, 0, c[3]};
+    case GL_LUMINANCE: case GL_INTENSITY: return {c[0], 0, 0, 1};
+    case GL_LUMINANCE_ALPHA: return {c[0], 0, 0, c[3]};
+    case GL_RGB: return {c[0], c[1], c[2], 1};
+    default: return c;
+  }
+}
+
+// The formats and types a table or filter query may ask for.
+bool is_query_image_format(GLenum format, GLenum type) {
+  return format_components(format) != 0 && format != GL_DEPTH_COMPONENT && format != GL_STENCIL_INDEX &&
+         format != GL_COLOR_INDEX && is_pixel_type(type);
+}
 }  // namespace
 
 void Context::define_color_table(int index, GLenum internalformat, int width, int start, const std::vector<Rgba>& rgba) {
@@ -97,6 +115,30 @@ void Context::glCopyColorTable(GLenum target, GLenum internalformat, GLint x, GL
   read_framebuffer_rgba(x, y, width, 1, rgba);
   counters().pixels_read += static_cast<std::uint64_t>(width);
   define_color_table(index, internalformat, width, -1, rgba);
+}
+
+void Context::glCopyColorSubTable(GLenum target, GLsizei start, GLint x, GLint y, GLsizei width) {
+  PASSIM_ENTRY(target, start, x, y, width)
+  const int index = table_index(target);
+  if (index < 0) return set_error(GL_INVALID_ENUM);
+  const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  if (start < 0 || width < 0 || static_cast<std::size_t>(start) + static_cast<std::size_t>(width) > t.entries.size())
+    return set_error(GL_INVALID_VALUE);
+  if (width == 0) return;
+  std::vector<Rgba> rgba;
+  read_framebuffer_rgba(x, y, width, 1, rgba);
+  counters().pixels_read += static_cast<std::uint64_t>(width);
+  define_color_table(index, t.internal_format, width, start, rgba);
+}
+
+void Context::glGetColorTable(GLenum target, GLenum format, GLenum type, void* table) {
+  PASSIM_ENTRY()
+  const int index = table_index(target);
+  if (index < 0 || !is_query_image_format(format, type)) return set_error(GL_INVALID_ENUM);
+  const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
+  std::vector<Rgba> out;
+  for (const Rgba& e : t.entries) out.push_back(returned_components(t.base, e));
+  if (!out.empty()) pack_rgba(out, static_cast<int>(out.size()), 1, format, type, pixel_store_.pack, table);
 }
 
 void Context::glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
@@ -231,6 +273,39 @@ void Context::glCopyConvolutionFilter2D(GLenum target, GLenum internalformat, GL
   std::vector<Rgba> taps;
   read_framebuffer_rgba(x, y, width, height, taps);
   define_filter(transfer_.filter_2d, internalformat, width, height, std::move(taps));
+}
+
+void Context::glCopyConvolutionFilter1D(GLenum target, GLenum internalformat, GLint x, GLint y, GLsizei width) {
+  PASSIM_ENTRY(target, internalformat, x, y, width)
+  if (target != GL_CONVOLUTION_1D) return set_error(GL_INVALID_ENUM);
+  if (!check_filter_format(internalformat, GL_RGBA, GL_FLOAT)) return;
+  if (width < 0 || width > profile_.limits.max_convolution_width) return set_error(GL_INVALID_VALUE);
+  std::vector<Rgba> taps;
+  read_framebuffer_rgba(x, y, width, 1, taps);
+  define_filter(transfer_.filter_1d, internalformat, width, 1, std::move(taps));
+}
+
+void Context::glGetConvolutionFilter(GLenum target, GLenum format, GLenum type, void* image) {
+  PASSIM_ENTRY()
+  const ConvolutionFilter* f = target == GL_CONVOLUTION_1D   ? &transfer_.filter_1d
+                               : target == GL_CONVOLUTION_2D ? &transfer_.filter_2d
+                                                             : nullptr;
+  if (!f || !is_query_image_format(format, type)) return set_error(GL_INVALID_ENUM);
+  std::vector<Rgba> out;
+  for (const Rgba& t : f->taps) out.push_back(returned_components(f->base, t));
+  if (!out.empty()) pack_rgba(out, f->width, f->height, format, type, pixel_store_.pack, image);
+}
+
+void Context::glGetSeparableFilter(GLenum target, GLenum format, GLenum type, void* row, void* column, void* span) {
+  PASSIM_ENTRY()
+  (void)span;  // unused by GL 1.2 (ARB_imaging)
+  if (target != GL_SEPARABLE_2D || !is_query_image_format(format, type)) return set_error(GL_INVALID_ENUM);
+  const ConvolutionFilter& f = transfer_.filter_separable;
+  for (const auto& [taps, out] : {std::pair{&f.row, row}, std::pair{&f.column, column}}) {
+    std::vector<Rgba> image;
+    for (const Rgba& t : *taps) image.push_back(returned_components(f.base, t));
+    if (!image.empty()) pack_rgba(image, static_cast<int>(image.size()), 1, format, type, pixel_store_.pack, out);
+  }
 }
 
 void Context::set_convolution_parameter(GLenum target, GLenum pname, const double* v) {
