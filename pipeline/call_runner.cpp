@@ -53,6 +53,14 @@ void CallRunner::check_image_data(const std::string& fn, const std::vector<Value
     return;
   }
   else if (fn == "glDrawPixels") { w = static_cast<int>(v[0].i); h = static_cast<int>(v[1].i); format = 2; type = 3; data = 4; }
+  else if (fn == "glBitmap") {
+    if (!v[6].bytes || v[6].count == 0) return;
+    const std::size_t need = bitmap_bytes(static_cast<int>(v[0].i), static_cast<int>(v[1].i), ctx_.unpack_store());
+    if (v[6].bytes->size() < need)
+      reject(fmt::format("glBitmap: the bitmap needs {} bytes under the current unpack modes, the trace gives {}", need,
+                         v[6].bytes->size()));
+    return;
+  }
   else return;
   const GLenum f = static_cast<GLenum>(v[format].i), t = static_cast<GLenum>(v[type].i);
   if (!v[data].bytes || v[data].count == 0 || w <= 0 || h <= 0 || format_components(f) == 0 || !is_pixel_type(t))

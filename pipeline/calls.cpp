@@ -294,6 +294,7 @@ const std::vector<CallInfo>& table() {
       ROW(glDrawPixels, "iieeV*", kNone),
       ROW(glReadPixels, "iiiieeO", kQuery),
       ROW(glCopyPixels, "iiiie", kNone),
+      ROW(glBitmap, "iiffffB*", kNone),
       // imaging: colour tables
       ROW(glColorTable, "eeieeV*", kNone),
       ROW(glColorSubTable, "eiieeV*", kNone),

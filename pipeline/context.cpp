@@ -370,6 +370,12 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_CURRENT_TEXTURE_COORDS:
       out = {current_.texcoord.s, current_.texcoord.t, current_.texcoord.p, current_.texcoord.q};
       return true;
+    // §2.12: the raster position (window coordinates, z in [0, 1], clip w) and its validity.
+    case GL_CURRENT_RASTER_POSITION:
+      out = {raster_.window.x, raster_.window.y, raster_.window.z, raster_.window.w};
+      return true;
+    case GL_CURRENT_RASTER_POSITION_VALID: return one(raster_.valid);
+    case GL_CURRENT_RASTER_COLOR: return color(raster_.color);
     // lists and arrays
     case GL_LIST_BASE: return one(list_base_);
     case GL_LIST_INDEX: return one(compiling_list_);

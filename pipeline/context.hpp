@@ -268,6 +268,10 @@ class Context {
   void glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels);
   void glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void* pixels);
   void glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type);
+  // §3.7: fragments of the raster colour where bits are set, at ⌊raster position − origin⌋;
+  // then the raster position moves by (xmove, ymove).
+  void glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yorig, GLfloat xmove, GLfloat ymove,
+                const GLubyte* bitmap);
 
   // ---- imaging subset: colour tables (ARB_imaging) ----
   void glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
@@ -419,6 +423,15 @@ class Context {
   // The size an image has after a REDUCE convolution for `dims` (unchanged otherwise).
   void reduced_size(int dims, int& width, int& height) const;
   void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
+  // The attributes every pixel-rectangle and bitmap fragment takes from the raster position.
+  struct RasterFragments {
+    std::uint16_t codes[4];
+    std::uint32_t z;
+    double s, t, r, fog;
+    bool extras;  // texture coordinates and fog are read by an enabled stage
+    void put(FragmentSpan& span, int i) const;
+  };
+  RasterFragments raster_fragments(const TriangleOptions& options) const;
   void read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const;
   void set_tex_parameter(GLenum target, GLenum pname, const double* v);
   void set_tex_env(GLenum target, GLenum pname, const double* v);

@@ -145,6 +145,79 @@ void Context::glPixelMapuiv(GLenum map, GLsizei mapsize, const GLuint* values) {
 
 // ---------------------------------------------------------------- rectangles to fragments (§3.6.4)
 
+Context::RasterFragments Context::raster_fragments(const TriangleOptions& options) const {
+  // §3.6.4, §3.7: pixel-rectangle and bitmap fragments take the raster position's colour,
+  // window z, texture coordinates and eye distance (for fog).
+  RasterFragments f;
+  const RasterVertex& rp = raster_.window;
+  f.z = fb_.config.depth_bits ? float_to_fixed(rp.z, fb_.config.depth_bits) : 0;
+  for (int k = 0; k < 4; ++k) f.codes[k] = static_cast<std::uint16_t>(float_to_fixed(raster_.color[k], fragment_bits_[k]));
+  f.s = rp.tex[0] / rp.tex[3];
+  f.t = rp.tex[1] / rp.tex[3];
+  f.r = rp.tex[2] / rp.tex[3];
+  f.fog = std::fabs(rp.eye_z);
+  f.extras = options.texcoords || options.fog;  // written only when a stage reads them
+  return f;
+}
+
+void Context::RasterFragments::put(FragmentSpan& span, int i) const {
+  for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = codes[k];
+  span.depth[i] = z;
+  if (!extras) return;
+  span.s[i] = s;
+  span.t[i] = t;
+  span.r[i] = r;
+  span.lambda[i] = 0.0;  // ρ = 1 for pixel rectangles and bitmaps
+  span.fog[i] = fog;
+}
+
+void Context::glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yorig, GLfloat xmove, GLfloat ymove,
+                       const GLubyte* bitmap) {
+  PASSIM_ENTRY(width, height, xorig, yorig, xmove, ymove,
+               RawArrayArg{bitmap, GL_UNSIGNED_BYTE, bitmap ? bitmap_bytes(width, height, pixel_store_.unpack) : 0})
+  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  if (!raster_.valid) return;  // §3.7: an invalid raster position ignores the bitmap and stays
+  if (bitmap && width > 0 && height > 0) {
+    Counters& c = counters();
+    c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    TriangleOptions options;
+    prepare_fragment_stages(options);
+    FragmentSink& sink = fragment_sink();
+    const RasterFragments raster = raster_fragments(options);
+    // x_ll = ⌊x_rp − x_o⌋, y_ll = ⌊y_rp − y_o⌋; bit (i, j) is the fragment (x_ll + i, y_ll + j).
+    const double xll = std::floor(raster_.window.x - xorig), yll = std::floor(raster_.window.y - yorig);
+    SpanBuffers& buf = scratch_->spans;
+    for (int j = 0; j < height; ++j) {
+      const double y = yll + j;
+      if (y < 0 || y >= fb_.height()) continue;
+      FragmentSpan span = buf.span(static_cast<int>(y), 0, 0);
+      int count = 0, x_first = 0;
+      auto flush = [&] {
+        if (count == 0) return;
+        span.x0 = x_first;
+        span.count = count;
+        c.fragments_generated += static_cast<std::uint64_t>(count);
+        sink.process(span);
+        span = buf.span(static_cast<int>(y), 0, 0);
+        count = 0;
+      };
+      for (int i = 0; i < width; ++i) {
+        const double x = xll + i;
+        // A span holds consecutive pixels: a clear bit or the window's edge ends it.
+        if (x < 0 || x >= fb_.width() || !bitmap_bit(bitmap, width, i, j, pixel_store_.unpack)) {
+          flush();
+          continue;
+        }
+        if (count == 0) x_first = static_cast<int>(x);
+        raster.put(span, count++);
+      }
+      flush();
+    }
+  }
+  raster_.window.x += xmove;
+  raster_.window.y += ymove;
+}
+
 void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
                                    const std::vector<double>* depth) {
   Counters& c = counters();
@@ -170,13 +243,8 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
     lo = static_cast<int>(std::clamp(first, 0.0, static_cast<double>(limit)));
     hi = static_cast<int>(std::clamp(last, -1.0, static_cast<double>(limit - 1)));
   };
-  const std::uint32_t z_code = fb_.config.depth_bits ? float_to_fixed(rp.z, fb_.config.depth_bits) : 0;
-  std::uint16_t raster_codes[4];
-  for (int k = 0; k < 4; ++k) raster_codes[k] = static_cast<std::uint16_t>(float_to_fixed(raster_.color[k], fragment_bits_[k]));
-  const double s = rp.tex[0] / rp.tex[3], t = rp.tex[1] / rp.tex[3], r = rp.tex[2] / rp.tex[3];
+  const RasterFragments raster = raster_fragments(options);
   SpanBuffers& buf = scratch_->spans;
-  // Texture coordinates and the fog coordinate are written only when a stage reads them.
-  const bool per_fragment_extras = options.texcoords || options.fog;
   for (int j = 0; j < height; ++j) {
     int row_lo, row_hi;
     pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), row_lo, row_hi);
@@ -200,21 +268,13 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
           if (count == 0) x_first = x;
           const std::size_t src = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);
           std::uint16_t* out = span.rgba + 4 * count;
+          raster.put(span, count);
           if (rgba) {
             // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point.
             for (int k = 0; k < 4; ++k)
               out[k] = static_cast<std::uint16_t>(float_to_fixed((*rgba)[src][static_cast<std::size_t>(k)], fragment_bits_[k]));
-            span.depth[count] = z_code;
           } else {
-            for (int k = 0; k < 4; ++k) out[k] = raster_codes[k];
             span.depth[count] = fb_.config.depth_bits ? float_to_fixed((*depth)[src], fb_.config.depth_bits) : 0;
-          }
-          if (per_fragment_extras) {
-            span.s[count] = s;
-            span.t[count] = t;
-            span.r[count] = r;
-            span.lambda[count] = 0.0;  // ρ = 1 for pixel rectangles
-            span.fog[count] = std::fabs(rp.eye_z);
           }
           ++count;
         }

@@ -80,6 +80,29 @@ void for_each_group(const void* data, int width, int height, GLenum format, GLen
 
 }  // namespace
 
+namespace {
+std::size_t bitmap_row_bytes(int width, const PixelStore& s) {
+  const std::size_t bits = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
+  const std::size_t k = static_cast<std::size_t>(s.alignment);
+  return k * (((bits + 7) / 8 + k - 1) / k);
+}
+}  // namespace
+
+std::size_t bitmap_bytes(int width, int height, const PixelStore& s) {
+  if (width <= 0 || height <= 0) return 0;
+  const std::size_t last_bit = static_cast<std::size_t>(s.skip_pixels) + static_cast<std::size_t>(width) - 1;
+  return static_cast<std::size_t>(s.skip_rows + height - 1) * bitmap_row_bytes(width, s) + last_bit / 8 + 1;
+}
+
+bool bitmap_bit(const void* data, int width, int x, int y, const PixelStore& s) {
+  const std::size_t bit = static_cast<std::size_t>(s.skip_pixels) + static_cast<std::size_t>(x);
+  const auto* row = static_cast<const std::uint8_t*>(data) +
+                    static_cast<std::size_t>(s.skip_rows + y) * bitmap_row_bytes(width, s);
+  const std::uint8_t byte = row[bit / 8];
+  const unsigned shift = s.lsb_first ? static_cast<unsigned>(bit % 8) : 7u - static_cast<unsigned>(bit % 8);
+  return (byte >> shift) & 1u;
+}
+
 std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& s) {
   if (width <= 0 || height <= 0) return 0;
   const int n = format_components(format), size = type_size(type);

@@ -21,6 +21,11 @@ struct PixelStore {
 
 using Rgba = std::array<double, 4>;
 
+// A bitmap (§3.6.4, type BITMAP: one bit per pixel; rows of ⌈row length / 8⌉ bytes padded to
+// the alignment; SKIP_PIXELS counts bits; UNPACK_LSB_FIRST picks the bit order in a byte).
+std::size_t bitmap_bytes(int width, int height, const PixelStore& s);
+bool bitmap_bit(const void* data, int width, int x, int y, const PixelStore& s);
+
 // Components of a pixel format (Table 3.5); 0 for a name that is not one.
 int format_components(GLenum format);
 // The colour formats of Table 3.5 (not DEPTH, STENCIL or COLOR_INDEX).

@@ -361,3 +361,53 @@ TEST(Imaging, PixelMapColor) {
   EXPECT_EQ(pixel(ctx, 0, 0)[0], 64u);
   EXPECT_EQ(pixel(ctx, 1, 0)[0], 255u);
 }
+
+// §3.7: a bitmap's set bits become fragments of the raster colour at ⌊x_rp − x_o⌋ + i,
+// ⌊y_rp − y_o⌋ + j; the raster position then moves by (x_move, y_move). Bits are read MSB
+// first unless UNPACK_LSB_FIRST; rows are padded to the unpack alignment.
+TEST(Pixels, BitmapDrawsItsSetBitsAndMovesTheRasterPosition) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  ctx.glColor4ub(200, 0, 0, 255);
+  ctx.glRasterPos2f(2.5f, 1.5f);   // raster colour: the current colour now
+  ctx.glColor4ub(0, 200, 0, 255);  // does not change the raster colour
+  ctx.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  const GLubyte bits[2] = {0xA0, 0x40};  // row 0: x = 0 and 2; row 1: x = 1
+  ctx.glBitmap(3, 2, 0.5f, 0.5f, 4.0f, 1.0f, bits);
+  // Lower left ⌊2.5 − 0.5⌋ = 2, ⌊1.5 − 0.5⌋ = 1: pixels (2, 1), (4, 1), (3, 2).
+  EXPECT_EQ(pixel(ctx, 2, 1)[0], 200u);
+  EXPECT_EQ(pixel(ctx, 4, 1)[0], 200u);
+  EXPECT_EQ(pixel(ctx, 3, 2)[0], 200u);
+  EXPECT_EQ(pixel(ctx, 3, 1)[0], 0u);
+  EXPECT_EQ(pixel(ctx, 2, 2)[0], 0u);
+  EXPECT_EQ(pixel(ctx, 3, 2)[1], 0u);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 3u);
+  // The position is now (6.5, 2.5): a bitmap without data only moves it, by (−1, 2).
+  GLfloat position[4] = {};
+  ctx.glGetFloatv(GL_CURRENT_RASTER_POSITION, position);
+  EXPECT_EQ(position[0], 6.5f);
+  EXPECT_EQ(position[1], 2.5f);
+  ctx.glBitmap(0, 0, 0, 0, -1.0f, 2.0f, nullptr);
+  ctx.glPixelStorei(GL_UNPACK_LSB_FIRST, GL_TRUE);
+  const GLubyte lsb[1] = {0x05};  // LSB first: x = 0 and 2
+  ctx.glBitmap(3, 1, 0, 0, 0, 0, lsb);
+  // At (5.5, 4.5): pixels (5, 4) and (7, 4).
+  EXPECT_EQ(pixel(ctx, 5, 4)[0], 200u);
+  EXPECT_EQ(pixel(ctx, 7, 4)[0], 200u);
+  EXPECT_EQ(pixel(ctx, 6, 4)[0], 0u);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 5u);
+  ctx.glBitmap(-1, 1, 0, 0, 0, 0, lsb);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_VALUE));
+}
+
+TEST(Pixels, BitmapAtAnInvalidRasterPositionDoesNothing) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  ctx.glRasterPos2f(-5.0f, 2.0f);  // outside the clip volume: invalid
+  const GLubyte bits[1] = {0xFF};
+  ctx.glBitmap(8, 1, 0, 0, 10.0f, 0, bits);
+  EXPECT_EQ(ctx.total_counters().fragments_generated, 0u);
+  GLint valid = 1;
+  ctx.glGetIntegerv(GL_CURRENT_RASTER_POSITION_VALID, &valid);
+  EXPECT_EQ(valid, 0);
+}
