@@ -904,7 +904,7 @@ void Context::set_light_model_param(GLenum pname, const double* v) {
     case GL_LIGHT_MODEL_LOCAL_VIEWER: lighting_.local_viewer = v[0] != 0.0; break;
     case GL_LIGHT_MODEL_TWO_SIDE: lighting_.two_side = v[0] != 0.0; break;
     case GL_LIGHT_MODEL_COLOR_CONTROL: {
-      const GLenum c = static_cast<GLenum>(v[0]);
+      const GLenum c = enum_param(v[0]);
       if (c != GL_SINGLE_COLOR && c != GL_SEPARATE_SPECULAR_COLOR) return set_error(GL_INVALID_ENUM);
       lighting_.color_control = c;
       break;

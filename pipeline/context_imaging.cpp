@@ -313,7 +313,7 @@ void Context::set_convolution_parameter(GLenum target, GLenum pname, const doubl
   if (!f) return set_error(GL_INVALID_ENUM);
   switch (pname) {
     case GL_CONVOLUTION_BORDER_MODE: {
-      const GLenum m = static_cast<GLenum>(v[0]);
+      const GLenum m = enum_param(v[0]);
       if (m != GL_REDUCE && m != GL_CONSTANT_BORDER && m != GL_REPLICATE_BORDER) return set_error(GL_INVALID_ENUM);
       f->border_mode = m;
       break;

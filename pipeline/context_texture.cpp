@@ -443,7 +443,7 @@ void Context::glGetTexImage(GLenum target, GLint level, GLenum format, GLenum ty
 void Context::set_tex_parameter(GLenum target, GLenum pname, const double* v) {
   TextureObject* tex = texture_for(target);
   if (!tex) return set_error(GL_INVALID_ENUM);
-  const GLenum e = static_cast<GLenum>(v[0]);
+  const GLenum e = enum_param(v[0]);
   auto is_wrap = [](GLenum m) { return m == GL_REPEAT || m == GL_CLAMP || m == GL_CLAMP_TO_EDGE; };
   switch (pname) {
     case GL_TEXTURE_MIN_FILTER:
@@ -468,11 +468,11 @@ void Context::set_tex_parameter(GLenum target, GLenum pname, const double* v) {
     case GL_TEXTURE_MAX_LOD: tex->max_lod = v[0]; break;
     case GL_TEXTURE_BASE_LEVEL:
       if (v[0] < 0) return set_error(GL_INVALID_VALUE);
-      tex->base_level = static_cast<int>(v[0]);
+      tex->base_level = int_param(v[0]);
       break;
     case GL_TEXTURE_MAX_LEVEL:
       if (v[0] < 0) return set_error(GL_INVALID_VALUE);
-      tex->max_level = static_cast<int>(v[0]);
+      tex->max_level = int_param(v[0]);
       break;
     case GL_TEXTURE_PRIORITY: tex->priority = clamp_nan_low(v[0], 0, 1); break;
     case GL_TEXTURE_COMPARE_SGIX: tex->compare_sgix = v[0] != 0.0; break;
@@ -554,8 +554,9 @@ void Context::glGetTexParameteriv(GLenum target, GLenum pname, GLint* params) {
   if (error_log_.size() != errors) return;
   const int n = pname == GL_TEXTURE_BORDER_COLOR ? 4 : 1;
   for (int k = 0; k < n; ++k)
-    params[k] = pname == GL_TEXTURE_BORDER_COLOR ? static_cast<GLint>(round_half_up(v[k] * 2147483647.0))
-                                                 : static_cast<GLint>(round_half_up(v[k]));
+    // Saturated: a level of 2^31 − 1 comes back from float as 2^31 (found by fuzzing).
+    params[k] = pname == GL_TEXTURE_BORDER_COLOR ? int_param(round_half_up(v[k] * 2147483647.0))
+                                                 : int_param(round_half_up(v[k]));
 }
 
 void Context::glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname, GLint* params) {
@@ -587,7 +588,7 @@ void Context::glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname,
 void Context::set_tex_env(GLenum target, GLenum pname, const double* v) {
   if (target != GL_TEXTURE_ENV) return set_error(GL_INVALID_ENUM);
   if (pname == GL_TEXTURE_ENV_MODE) {
-    const GLenum m = static_cast<GLenum>(v[0]);
+    const GLenum m = enum_param(v[0]);
     if (m != GL_MODULATE && m != GL_DECAL && m != GL_BLEND && m != GL_REPLACE && m != GL_ADD)
       return set_error(GL_INVALID_ENUM);
     textures_.env_mode = m;
@@ -622,7 +623,7 @@ void Context::set_tex_gen(GLenum coord, GLenum pname, const double* v) {
   TexGenState& g = textures_.gen[coord - GL_S];
   switch (pname) {
     case GL_TEXTURE_GEN_MODE: {
-      const GLenum m = static_cast<GLenum>(v[0]);
+      const GLenum m = enum_param(v[0]);
       if (m != GL_OBJECT_LINEAR && m != GL_EYE_LINEAR && m != GL_SPHERE_MAP) return set_error(GL_INVALID_ENUM);
       if (m == GL_SPHERE_MAP && (coord == GL_R || coord == GL_Q)) return set_error(GL_INVALID_ENUM);
       g.mode = m;
@@ -700,7 +701,7 @@ FragmentSink& Context::fragment_sink() { return first_stage_ ? *first_stage_ : s
 void Context::set_fog(GLenum pname, const double* v) {
   switch (pname) {
     case GL_FOG_MODE: {
-      const GLenum m = static_cast<GLenum>(v[0]);
+      const GLenum m = enum_param(v[0]);
       if (m != GL_LINEAR && m != GL_EXP && m != GL_EXP2) return set_error(GL_INVALID_ENUM);
       fog_.mode = m;
       break;

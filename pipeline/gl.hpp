@@ -22,4 +22,18 @@ std::string enum_name(std::uint32_t value, EnumRole role = EnumRole::Generic);
 // The names of bits set in a GL bitfield ("GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT").
 std::string bitfield_name(std::uint32_t value);
 
+// An enum passed through a float parameter (glTexParameterf(..., GL_LINEAR)): its value when it
+// is a whole number in GLenum's range, else 0, which no such parameter accepts — so a negative,
+// fractional, huge or NaN value is GL_INVALID_ENUM rather than an undefined conversion.
+inline GLenum enum_param(double v) {
+  return v >= 0.0 && v <= 4294967295.0 && v == static_cast<double>(static_cast<std::uint64_t>(v))
+             ? static_cast<GLenum>(v)
+             : 0;
+}
+// An integer passed through a float parameter, saturated to GLint's range (NaN: 0).
+inline GLint int_param(double v) {
+  if (!(v == v)) return 0;
+  return v <= -2147483648.0 ? INT32_MIN : v >= 2147483647.0 ? INT32_MAX : static_cast<GLint>(v);
+}
+
 }  // namespace passim

@@ -1,6 +1,8 @@
 // Texturing with values computed by hand from §3.8 (and ARB/SGIX shadow).
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "test_util.hpp"
 
 using namespace passim;
@@ -446,4 +448,21 @@ TEST(TextureFastPath, NearestReplaceMatchesTheGeneralPath) {
     }
   }
   EXPECT_GT(TextureStage::fast_path_fragments, 10000u);  // the fast path did run
+}
+
+// Found by fuzzing: an enum given as a negative float (glTexParameterf(..., −9728)) was an
+// undefined conversion; it is GL_INVALID_ENUM, and a huge level saturates.
+TEST(TextureParameters, FloatEnumsOutOfRangeAreInvalidEnum) {
+  Context ctx(test::small_config(4, 4));
+  for (float bad : {-9728.0f, 9728.5f, 1e30f, std::numeric_limits<float>::quiet_NaN()}) {
+    ctx.glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, bad);
+    EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM)) << bad;
+  }
+  ctx.glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<float>(GL_LINEAR));
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  ctx.glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1e30f);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  GLint level = 0;
+  ctx.glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &level);
+  EXPECT_EQ(level, 2147483647);
 }
