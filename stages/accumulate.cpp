@@ -3,52 +3,167 @@
 #include "pipeline/fixed_point.hpp"
 #include "stages/clear.hpp"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PASSIM_HAVE_AVX2_KERNEL 1
+#endif
+
 namespace passim {
+
+// ---------------------------------------------------------------- scalar reference
+
+void accumulate_row_scalar(const AccumRowOp& s, std::int32_t* acc, const std::uint16_t* read, int n) {
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) {
+      std::int32_t& code = acc[4 * i + k];
+      const double a = code / s.scale;
+      double result;
+      switch (s.op) {
+        case GL_ACCUM: result = a + s.term[k][read[4 * i + k] & s.code_mask[k]]; break;
+        case GL_LOAD: result = s.term[k][read[4 * i + k] & s.code_mask[k]]; break;
+        case GL_ADD: result = a + s.value; break;
+        default: result = a * s.value; break;  // GL_MULT
+      }
+      // A21: round half up (A1), saturate to [−1, 1] (NaN to −1).
+      code = static_cast<std::int32_t>(round_half_up(clamp_nan_low(result, -1.0, 1.0) * s.scale));
+    }
+}
+
+void return_row_scalar(const AccumRowOp& s, const std::int32_t* acc, std::uint16_t* out, int n) {
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 4; ++k) {
+      const double v = s.value * (acc[4 * i + k] / s.scale);
+      // §2.13.9 conversion of clamp(v, 0, 1) (float_to_fixed with the channel's maximum).
+      out[4 * i + k] = static_cast<std::uint16_t>(clamp_nan_low(v, 0.0, 1.0) * s.color_max[k] + 0.5);
+    }
+}
+
+// ---------------------------------------------------------------- AVX2
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+namespace {
+
+// clamp_nan_low with MAXPD/MINPD: when x is NaN, MAXPD returns its second operand (lo).
+__attribute__((target("avx2"))) inline __m256d clamp_nan_low_4(__m256d x, __m256d lo, __m256d hi) {
+  return _mm256_min_pd(_mm256_max_pd(x, lo), hi);
+}
+
+template <GLenum Op>
+__attribute__((target("avx2"))) void accumulate_row_avx2_op(const AccumRowOp& s, std::int32_t* acc,
+                                                            const std::uint16_t* read, int n) {
+  const __m256d scale = _mm256_set1_pd(s.scale), value = _mm256_set1_pd(s.value);
+  const __m256d lo = _mm256_set1_pd(-1.0), hi = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  for (int i = 0; i < n; ++i) {
+    __m128i* p = reinterpret_cast<__m128i*>(acc + 4 * i);
+    __m256d result;
+    if constexpr (Op == GL_LOAD || Op == GL_ACCUM) {
+      const std::uint16_t* c = read + 4 * i;
+      const __m256d term = _mm256_set_pd(s.term[3][c[3] & s.code_mask[3]], s.term[2][c[2] & s.code_mask[2]],
+                                         s.term[1][c[1] & s.code_mask[1]], s.term[0][c[0] & s.code_mask[0]]);
+      if constexpr (Op == GL_LOAD) {
+        result = term;
+      } else {
+        result = _mm256_add_pd(_mm256_div_pd(_mm256_cvtepi32_pd(_mm_loadu_si128(p)), scale), term);
+      }
+    } else {
+      const __m256d a = _mm256_div_pd(_mm256_cvtepi32_pd(_mm_loadu_si128(p)), scale);
+      result = Op == GL_ADD ? _mm256_add_pd(a, value) : _mm256_mul_pd(a, value);
+    }
+    // floor is exact, as round_half_up's floor_exact; the result lies in ±(scale + ½).
+    const __m256d rounded = _mm256_floor_pd(_mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(result, lo, hi), scale), half));
+    _mm_storeu_si128(p, _mm256_cvttpd_epi32(rounded));
+  }
+}
+
+}  // namespace
+
+void accumulate_row_avx2(const AccumRowOp& s, std::int32_t* acc, const std::uint16_t* read, int n) {
+  switch (s.op) {
+    case GL_ACCUM: return accumulate_row_avx2_op<GL_ACCUM>(s, acc, read, n);
+    case GL_LOAD: return accumulate_row_avx2_op<GL_LOAD>(s, acc, read, n);
+    case GL_ADD: return accumulate_row_avx2_op<GL_ADD>(s, acc, read, n);
+    default: return accumulate_row_avx2_op<GL_MULT>(s, acc, read, n);
+  }
+}
+
+__attribute__((target("avx2"))) void return_row_avx2(const AccumRowOp& s, const std::int32_t* acc, std::uint16_t* out,
+                                                     int n) {
+  const __m256d scale = _mm256_set1_pd(s.scale), value = _mm256_set1_pd(s.value);
+  const __m256d lo = _mm256_setzero_pd(), hi = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  const __m256d color_max = _mm256_loadu_pd(s.color_max);
+  for (int i = 0; i < n; ++i) {
+    const __m256d a = _mm256_div_pd(_mm256_cvtepi32_pd(_mm_loadu_si128(reinterpret_cast<const __m128i*>(acc + 4 * i))), scale);
+    const __m256d v = _mm256_mul_pd(value, a);
+    // The argument is >= 0.5, so truncation is the floor (as in float_to_fixed).
+    const __m128i codes = _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(v, lo, hi), color_max), half));
+    // Codes are below 2^16: pack the four 32-bit lanes to 16 bits without saturation effects.
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 4 * i), _mm_packus_epi32(codes, codes));
+  }
+}
+
+bool accumulate_has_avx2() { return __builtin_cpu_supports("avx2"); }
+#else
+void accumulate_row_avx2(const AccumRowOp& s, std::int32_t* acc, const std::uint16_t* read, int n) {
+  accumulate_row_scalar(s, acc, read, n);
+}
+void return_row_avx2(const AccumRowOp& s, const std::int32_t* acc, std::uint16_t* out, int n) {
+  return_row_scalar(s, acc, out, n);
+}
+bool accumulate_has_avx2() { return false; }
+#endif
+
+// ---------------------------------------------------------------- the operation
 
 void accumulate(GLenum op, double value, const AccumRegion& r, const ColorPlane& read,
                 const std::vector<ColorBufferId>& draw, const std::array<bool, 4>& mask, Framebuffer& fb,
                 Counters& counters) {
   const FramebufferConfig& cfg = fb.config;
   const int abits = cfg.accum_bits;
-  const double scale = static_cast<double>((std::int64_t{1} << (abits - 1)) - 1);
-  const std::uint64_t pixels =
-      static_cast<std::uint64_t>(r.x1 - r.x0) * static_cast<std::uint64_t>(r.y1 - r.y0);
+  const int width = r.x1 - r.x0;
+  const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(r.y1 - r.y0);
+  AccumRowOp row_op;
+  row_op.op = op;
+  row_op.value = value;
+  row_op.scale = static_cast<double>((std::int64_t{1} << (abits - 1)) - 1);
+  // ACCUM and LOAD: value·c for every code of each channel, computed once per call (the
+  // same product the per-pixel expression gives). An absent channel reads as 1 (A21).
+  std::array<std::vector<double>, 4> terms;
+  if (op == GL_ACCUM || op == GL_LOAD)
+    for (int k = 0; k < 4; ++k) {
+      const int bits = cfg.color_bits[k];
+      const std::uint32_t codes = bits ? max_code(bits) + 1 : 1;
+      terms[k].resize(codes);
+      const double* values = bits ? code_values(bits) : nullptr;
+      for (std::uint32_t c = 0; c < codes; ++c) terms[k][c] = value * (values ? values[c] : 1.0);
+      row_op.term[k] = terms[k].data();
+      row_op.code_mask[k] = bits ? max_code(bits) : 0;
+    }
+  for (int k = 0; k < 4; ++k) row_op.color_max[k] = static_cast<double>(max_code(cfg.color_bits[k]));
+  const bool wide = accumulate_has_avx2();
+  std::vector<std::uint16_t> returned(op == GL_RETURN ? 4 * static_cast<std::size_t>(std::max(width, 0)) : 0);
+  for (int y = r.y0; y < r.y1 && width > 0; ++y) {
+    const std::size_t p = fb.pixel_index(r.x0, y);
+    std::int32_t* acc = &fb.accum[4 * p];
+    if (op != GL_RETURN) {
+      const std::uint16_t* codes = &read.rgba[4 * p];
+      (wide ? accumulate_row_avx2 : accumulate_row_scalar)(row_op, acc, codes, width);
+      continue;
+    }
+    (wide ? return_row_avx2 : return_row_scalar)(row_op, acc, returned.data(), width);
+    for (ColorBufferId id : draw) {
+      std::uint16_t* c = &fb.color[static_cast<int>(id)].rgba[4 * p];
+      for (int k = 0; k < 4; ++k) {
+        if (!mask[k] || cfg.color_bits[k] == 0) continue;
+        for (int i = 0; i < width; ++i) c[4 * i + k] = returned[4 * static_cast<std::size_t>(i) + static_cast<std::size_t>(k)];
+      }
+    }
+  }
   const std::uint64_t accum_bits = 4u * static_cast<std::uint64_t>(abits);
   const std::uint64_t color_bits =
       static_cast<std::uint64_t>(cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3]);
   int mask_bits = 0;
   for (int k = 0; k < 4; ++k)
     if (mask[k]) mask_bits += cfg.color_bits[k];
-  const double* read_values[4];
-  for (int k = 0; k < 4; ++k) read_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
-  auto read_value = [&](std::size_t p, int k) {
-    return read_values[k] ? read_values[k][read.rgba[4 * p + static_cast<std::size_t>(k)]] : 1.0;  // no alpha: 1
-  };
-  for (int y = r.y0; y < r.y1; ++y)
-    for (int x = r.x0; x < r.x1; ++x) {
-      const std::size_t p = fb.pixel_index(x, y);
-      std::int32_t* acc = &fb.accum[4 * p];
-      if (op == GL_RETURN) {
-        for (ColorBufferId id : draw) {
-          std::uint16_t* c = &fb.color[static_cast<int>(id)].rgba[4 * p];
-          for (int k = 0; k < 4; ++k)
-            if (mask[k] && cfg.color_bits[k] > 0)
-              c[k] = static_cast<std::uint16_t>(float_to_fixed(value * (acc[k] / scale), cfg.color_bits[k]));
-        }
-        continue;
-      }
-      for (int k = 0; k < 4; ++k) {
-        const double a = acc[k] / scale;
-        double result;
-        switch (op) {
-          case GL_ACCUM: result = a + value * read_value(p, k); break;
-          case GL_LOAD: result = value * read_value(p, k); break;
-          case GL_ADD: result = a + value; break;
-          default: result = a * value; break;  // GL_MULT
-        }
-        acc[k] = accum_code(result, abits);
-      }
-    }
   switch (op) {
     case GL_ACCUM: counters.accum_accum_pixels += pixels; break;
     case GL_LOAD: counters.accum_load_pixels += pixels; break;
