@@ -429,7 +429,9 @@ class Context {
     std::uint32_t z;
     double s, t, r, fog;
     bool extras;  // texture coordinates and fog are read by an enabled stage
-    void put(FragmentSpan& span, int i) const;
+    // Fragments [first, first + count) of the span; `colour` / `depth` false leaves those
+    // for the caller (a rectangle's own colours or depths).
+    void put(FragmentSpan& span, int first, int count = 1, bool colour = true, bool depth = true) const;
   };
   RasterFragments raster_fragments(const TriangleOptions& options) const;
   void read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const;

@@ -160,15 +160,18 @@ Context::RasterFragments Context::raster_fragments(const TriangleOptions& option
   return f;
 }
 
-void Context::RasterFragments::put(FragmentSpan& span, int i) const {
-  for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = codes[k];
-  span.depth[i] = z;
+void Context::RasterFragments::put(FragmentSpan& span, int first, int count, bool colour, bool depth) const {
+  const int end = first + count;
+  if (colour)
+    for (int i = first; i < end; ++i)
+      for (int k = 0; k < 4; ++k) span.rgba[4 * i + k] = codes[k];
+  if (depth) std::fill(span.depth + first, span.depth + end, z);
   if (!extras) return;
-  span.s[i] = s;
-  span.t[i] = t;
-  span.r[i] = r;
-  span.lambda[i] = 0.0;  // ρ = 1 for pixel rectangles and bitmaps
-  span.fog[i] = fog;
+  std::fill(span.s + first, span.s + end, s);
+  std::fill(span.t + first, span.t + end, t);
+  std::fill(span.r + first, span.r + end, r);
+  std::fill(span.lambda + first, span.lambda + end, 0.0);  // ρ = 1 for pixel rectangles and bitmaps
+  std::fill(span.fog + first, span.fog + end, fog);
 }
 
 void Context::glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yorig, GLfloat xmove, GLfloat ymove,
@@ -244,44 +247,63 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
     hi = static_cast<int>(std::clamp(last, -1.0, static_cast<double>(limit - 1)));
   };
   const RasterFragments raster = raster_fragments(options);
+  // The window columns the groups of a row cover are the same in every row: window column
+  // x_first + c shows source column source_column[c] (increasing x; contiguous, since the
+  // groups tile [xr, xr + zx·width)).
+  std::vector<int> source_column;
+  int x_first = 0;
+  const int xr_int = static_cast<int>(std::clamp(xr, -1.0e9, 1.0e9));
+  for (int step = 0; step < width; ++step) {
+    const int i = zx >= 0 ? step : width - 1 - step;
+    int lo, hi;
+    if (zx == 1.0) {
+      // Zoom 1: group i covers [xr + i, xr + i + 1), whose only centre is pixel xr + i.
+      lo = hi = xr_int + i;
+      if (lo < 0 || lo >= fb_.width()) continue;
+    } else {
+      pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
+    }
+    for (int x = lo; x <= hi; ++x) {
+      if (source_column.empty()) x_first = x;
+      source_column.push_back(i);
+    }
+  }
+  const int count = static_cast<int>(source_column.size());
+  if (count == 0) return;
+  bool identity = count == width;  // every source column once, in order (zoom 1, all inside)
+  for (int c = 0; identity && c < count; ++c) identity = source_column[static_cast<std::size_t>(c)] == c;
+  // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point — once per source row.
+  double color_max[4];
+  for (int k = 0; k < 4; ++k) color_max[k] = static_cast<double>(max_code(fragment_bits_[k]));
+  std::vector<std::uint16_t> row_codes(rgba ? 4 * static_cast<std::size_t>(width) : 0);
+  std::vector<std::uint32_t> row_depth(rgba ? 0 : static_cast<std::size_t>(width));
   SpanBuffers& buf = scratch_->spans;
   for (int j = 0; j < height; ++j) {
     int row_lo, row_hi;
     pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), row_lo, row_hi);
+    if (row_lo > row_hi) continue;
+    const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(width);
+    if (rgba) {
+      color_codes_from_reals(rgba->data() + row, static_cast<std::size_t>(width), color_max, row_codes.data());
+    } else {
+      for (int i = 0; i < width; ++i)
+        row_depth[static_cast<std::size_t>(i)] =
+            fb_.config.depth_bits ? float_to_fixed((*depth)[row + static_cast<std::size_t>(i)], fb_.config.depth_bits) : 0;
+    }
     for (int y = row_lo; y <= row_hi; ++y) {
-      // Gather the fragments of this window row in increasing x.
-      int count = 0, x_first = 0;
-      FragmentSpan span = buf.span(y, 0, 0);
-      const bool unit_zoom = zx == 1.0;
-      const int xr_int = static_cast<int>(std::clamp(xr, -1.0e9, 1.0e9));
-      for (int step = 0; step < width; ++step) {
-        const int i = zx >= 0 ? step : width - 1 - step;
-        int lo, hi;
-        if (unit_zoom) {
-          // Zoom 1: group i covers [xr + i, xr + i + 1), whose only centre is pixel xr + i.
-          lo = hi = xr_int + i;
-          if (lo < 0 || lo >= fb_.width()) continue;
-        } else {
-          pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
-        }
-        for (int x = lo; x <= hi; ++x) {
-          if (count == 0) x_first = x;
-          const std::size_t src = static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i);
-          std::uint16_t* out = span.rgba + 4 * count;
-          raster.put(span, count);
-          if (rgba) {
-            // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point.
-            for (int k = 0; k < 4; ++k)
-              out[k] = static_cast<std::uint16_t>(float_to_fixed((*rgba)[src][static_cast<std::size_t>(k)], fragment_bits_[k]));
-          } else {
-            span.depth[count] = fb_.config.depth_bits ? float_to_fixed((*depth)[src], fb_.config.depth_bits) : 0;
-          }
-          ++count;
-        }
+      // The stages after this may change the span's colours: each window row starts afresh.
+      FragmentSpan span = buf.span(y, x_first, count);
+      raster.put(span, 0, count, !rgba, rgba != nullptr);
+      if (rgba && identity) {
+        std::copy(row_codes.begin(), row_codes.begin() + 4 * count, span.rgba);
+      } else if (rgba) {
+        for (int c = 0; c < count; ++c)
+          std::copy_n(&row_codes[4 * static_cast<std::size_t>(source_column[static_cast<std::size_t>(c)])], 4,
+                      span.rgba + 4 * c);
+      } else {
+        for (int c = 0; c < count; ++c)
+          span.depth[c] = row_depth[static_cast<std::size_t>(source_column[static_cast<std::size_t>(c)])];
       }
-      if (count == 0) continue;
-      span.x0 = x_first;
-      span.count = count;
       c.fragments_generated += static_cast<std::uint64_t>(count);
       sink.process(span);
     }
@@ -372,12 +394,13 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     transfer_depth(depth, transfer_);
     draw_pixel_rectangle(width, height, nullptr, &depth);
   } else {
-    std::vector<Rgba> rgba;
+    std::vector<Rgba>& rgba = scratch_->rectangle;
     read_framebuffer_rgba(x, y, width, height, rgba);
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += rgba.size() * static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
     int w = width, h = height;
-    if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c) && w > 0 && h > 0)
+    if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, 2, &scratch_->rectangle_spare) && w > 0 &&
+        h > 0)
       draw_pixel_rectangle(w, h, &rgba, nullptr);
   }
 }

@@ -20,6 +20,9 @@ struct Context::Scratch {
   FogStage fog_stage;          // -> fragment_ops
   std::vector<ProcessedVertex> polygon, clip_scratch;
   std::vector<RasterVertex> window;
+  // A copied rectangle and the convolution's output: kept between calls, so that a copy of
+  // the whole window does not map and fault in fresh pages each time.
+  std::vector<Rgba> rectangle, rectangle_spare;
 };
 
 }  // namespace passim

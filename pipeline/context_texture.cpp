@@ -320,15 +320,21 @@ void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::ve
   const auto& bits = fb_.config.color_bits;
   const double* values[4];
   for (int k = 0; k < 4; ++k) values[k] = bits[k] ? code_values(bits[k]) : nullptr;
-  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), Rgba{0, 0, 0, 0});
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) {
-      const int px = x + i, py = y + j;
-      if (px < 0 || py < 0 || px >= fb_.width() || py >= fb_.height()) continue;
-      const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(px, py)];
-      Rgba& o = out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)];
-      for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = values[k] ? values[k][c[k]] : 1.0;
-    }
+  out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  const bool inside = x >= 0 && y >= 0 && std::int64_t{x} + width <= fb_.width() && std::int64_t{y} + height <= fb_.height();
+  if (!inside) std::fill(out.begin(), out.end(), Rgba{0, 0, 0, 0});  // every pixel inside is written below
+  // The columns inside the window, the same for every row.
+  const auto first = std::clamp<std::int64_t>(-std::int64_t{x}, 0, width);
+  const int i_lo = static_cast<int>(first);
+  const int i_hi = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{fb_.width()} - x, first, width));
+  for (int j = 0; j < height && i_lo < i_hi; ++j) {
+    const std::int64_t py = std::int64_t{y} + j;
+    if (py < 0 || py >= fb_.height()) continue;
+    const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(x + i_lo, static_cast<int>(py))];
+    Rgba* o = &out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width)];
+    for (int i = i_lo; i < i_hi; ++i, c += 4)
+      for (int k = 0; k < 4; ++k) o[i][static_cast<std::size_t>(k)] = values[k] ? values[k][c[k]] : 1.0;
+  }
 }
 
 void Context::read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const {

@@ -2,7 +2,79 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PASSIM_HAVE_AVX2_KERNEL 1
+#endif
+
 namespace passim {
+
+namespace {
+
+// The taps as each output component reads them (tap[n + m·wf][k] is the filter component
+// that component k is multiplied by), and which components the filter convolves.
+struct InteriorRows {
+  const Rgba* image;
+  int ws, wf, hf, cw, ch;
+  const Rgba* taps;
+  bool conv[4];
+  Rgba* out;
+  int wo;
+};
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+// Output pixels (i, j), i in [i0, i1), whose whole footprint is inside the image: the sum
+// over (m, n) in the reference's order, starting from +0, one multiply and one add per tap
+// (no FMA); two pixels at a time so that their additions overlap. Components the filter
+// does not convolve take the anchor pixel's value, as in the reference.
+__attribute__((target("avx2"))) inline void store_output(const InteriorRows& r, int j, int i, __m256d sum,
+                                                         __m256d keep) {
+  const __m256d anchor = _mm256_loadu_pd(r.image[static_cast<std::size_t>(j) * static_cast<std::size_t>(r.ws) + static_cast<std::size_t>(i)].data());
+  _mm256_storeu_pd(r.out[static_cast<std::size_t>(j) * static_cast<std::size_t>(r.wo) + static_cast<std::size_t>(i)].data(),
+                   _mm256_blendv_pd(sum, anchor, keep));
+}
+
+__attribute__((target("avx2"))) void convolve_interior_avx2(const InteriorRows& r, int j, int i0, int i1) {
+  const __m256d keep = _mm256_castsi256_pd(_mm256_setr_epi64x(r.conv[0] ? 0 : -1, r.conv[1] ? 0 : -1,
+                                                              r.conv[2] ? 0 : -1, r.conv[3] ? 0 : -1));
+  const std::size_t ws = static_cast<std::size_t>(r.ws), wf = static_cast<std::size_t>(r.wf);
+  int i = i0;
+  for (; i + 1 < i1; i += 2) {
+    __m256d sum0 = _mm256_setzero_pd(), sum1 = _mm256_setzero_pd();
+    for (int m = 0; m < r.hf; ++m) {
+      const Rgba* s = r.image + static_cast<std::size_t>(j - r.ch + m) * ws + static_cast<std::size_t>(i - r.cw);
+      const Rgba* t = r.taps + static_cast<std::size_t>(m) * wf;
+      for (std::size_t n = 0; n < wf; ++n) {
+        const __m256d tap = _mm256_loadu_pd(t[n].data());
+        sum0 = _mm256_add_pd(sum0, _mm256_mul_pd(_mm256_loadu_pd(s[n].data()), tap));
+        sum1 = _mm256_add_pd(sum1, _mm256_mul_pd(_mm256_loadu_pd(s[n + 1].data()), tap));
+      }
+    }
+    store_output(r, j, i, sum0, keep);
+    store_output(r, j, i + 1, sum1, keep);
+  }
+  for (; i < i1; ++i) {
+    __m256d sum = _mm256_setzero_pd();
+    for (int m = 0; m < r.hf; ++m) {
+      const Rgba* s = r.image + static_cast<std::size_t>(j - r.ch + m) * ws + static_cast<std::size_t>(i - r.cw);
+      const Rgba* t = r.taps + static_cast<std::size_t>(m) * wf;
+      for (std::size_t n = 0; n < wf; ++n)
+        sum = _mm256_add_pd(sum, _mm256_mul_pd(_mm256_loadu_pd(s[n].data()), _mm256_loadu_pd(t[n].data())));
+    }
+    store_output(r, j, i, sum, keep);
+  }
+}
+#endif
+
+}  // namespace
+
+bool convolution_has_avx2() {
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
 
 Rgba ConvolutionFilter::tap(int n, int m) const {
   if (separable) {
@@ -14,7 +86,8 @@ Rgba ConvolutionFilter::tap(int n, int m) const {
   return taps[static_cast<std::size_t>(n + m * width)];
 }
 
-void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& f, Counters& counters) {
+void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& f, Counters& counters,
+              ConvolutionKernel kernel, std::vector<Rgba>* spare) {
   const int ws = width, hs = height, wf = f.width, hf = f.height;
   const bool reduce = f.border_mode == GL_REDUCE;
   const int wo = reduce ? ws - wf + 1 : ws, ho = reduce ? hs - hf + 1 : hs;
@@ -51,12 +124,35 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
   std::vector<Rgba> taps(static_cast<std::size_t>(wf) * static_cast<std::size_t>(hf));
   for (int m = 0; m < hf; ++m)
     for (int n = 0; n < wf; ++n) taps[static_cast<std::size_t>(n + m * wf)] = f.tap(n, m);
-  std::vector<Rgba> out(static_cast<std::size_t>(wo) * static_cast<std::size_t>(ho));
+  std::vector<Rgba> local;
+  std::vector<Rgba>& out = spare ? *spare : local;
+  out.resize(static_cast<std::size_t>(wo) * static_cast<std::size_t>(ho));  // every element is written below
+  // The output columns whose footprint lies inside the image: [i_in0, i_in1).
+  const int i_in0 = std::min(cw, wo), i_in1 = std::max(i_in0, std::min(wo, ws - wf + cw + 1));
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+  const bool wide = kernel == ConvolutionKernel::Fastest && convolution_has_avx2();
+  std::vector<Rgba> component_taps(taps.size());
+  for (std::size_t t = 0; t < taps.size(); ++t)
+    for (std::size_t k = 0; k < 4; ++k) component_taps[t][k] = taps[t][static_cast<std::size_t>(source[k])];
+  const InteriorRows rows{image.data(), ws, wf, hf, cw, ch, component_taps.data(), {conv[0], conv[1], conv[2], conv[3]},
+                          out.data(), wo};
+#else
+  const bool wide = false;
+  (void)kernel;
+#endif
   for (int j = 0; j < ho; ++j)
     for (int i = 0; i < wo; ++i) {
+      const bool row_inside = j - ch >= 0 && j - ch + hf <= hs;
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+      if (wide && row_inside && i == i_in0 && i_in1 > i_in0) {
+        convolve_interior_avx2(rows, j, i_in0, i_in1);
+        i = i_in1 - 1;
+        continue;
+      }
+#endif
       double sum[4] = {0, 0, 0, 0};
       // Inside the image the source is read directly; near the edges through the border rule.
-      const bool inside = i - cw >= 0 && i - cw + wf <= ws && j - ch >= 0 && j - ch + hf <= hs;
+      const bool inside = i - cw >= 0 && i - cw + wf <= ws && row_inside;
       for (int m = 0; m < hf; ++m)
         for (int n = 0; n < wf; ++n) {
           const int x = i - cw + n, y = j - ch + m;

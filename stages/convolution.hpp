@@ -26,7 +26,15 @@ struct ConvolutionFilter {
 };
 
 // Convolves a width x height image in place; width and height become the output size
-// (smaller under REDUCE, possibly 0).
-void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters);
+// (smaller under REDUCE, possibly 0). `Scalar` computes every pixel with the reference
+// loop; `Fastest` computes the pixels whose footprint lies inside the image with an AVX2
+// kernel (when the processor has it) that performs the same IEEE operations in the same
+// order — the results are the same bits (tests/pixel_transfer_kernels_test.cpp).
+// `spare`, when given, is storage the output is built in and the input's storage is
+// handed back in (a caller that convolves often keeps its allocation).
+enum class ConvolutionKernel { Scalar, Fastest };
+void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters,
+              ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr);
+bool convolution_has_avx2();
 
 }  // namespace passim

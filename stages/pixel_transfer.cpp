@@ -4,6 +4,11 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define PASSIM_HAVE_AVX2_KERNEL 1
+#endif
+
 namespace passim {
 
 void color_table_lookup(const ColorTable& t, Rgba& c) {
@@ -45,49 +50,83 @@ void Minmax::reset() {
   max = {-big, -big, -big, -big};
 }
 
-bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
-                   Counters& counters, int dims) {
-  const bool scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
-  const bool matrix = m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
-  const ColorTable& t0 = s.tables[kColorTable];
-  const ColorTable& t1 = s.tables[kPostConvolutionTable];
-  const ColorTable& t2 = s.tables[kPostColorMatrixTable];
-  const bool use0 = t0.enabled && !t0.entries.empty(), use1 = t1.enabled && !t1.entries.empty();
-  const bool use2 = t2.enabled && !t2.entries.empty();
-  const std::uint64_t n_in = pixels.size();
-  // Step 2: c = c·scale + bias, no clamp. Step 4: COLOR_TABLE.
-  for (Rgba& p : pixels) {
-    if (scale_bias)
+TransferPlan plan_transfer(const PixelTransferState& s, const Mat4& m) {
+  TransferPlan plan;
+  plan.state = &s;
+  plan.matrix = &m;
+  plan.scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
+  plan.map_color = s.map_color;
+  plan.color_matrix =
+      m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
+  for (std::size_t t = 0; t < 3; ++t)
+    plan.tables[t] = s.tables[t].enabled && !s.tables[t].entries.empty() ? &s.tables[t] : nullptr;
+  return plan;
+}
+
+void transfer_pre_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std::size_t n) {
+  const PixelTransferState& s = *plan.state;
+  for (std::size_t i = 0; i < n; ++i) {
+    Rgba& p = pixels[i];
+    // Step 2: c = c·scale + bias, no clamp.
+    if (plan.scale_bias)
       for (int k = 0; k < 4; ++k) p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.scale[k] + s.bias[k];
     // Step 3: MAP_COLOR — clamp, index round(c·(size − 1)), replace by the map's entry.
-    if (s.map_color)
+    if (plan.map_color)
       for (std::size_t k = 0; k < 4; ++k) {
         const std::vector<double>& map = s.color_maps[k];
         const double v = clamp_nan_low(p[k], 0.0, 1.0);
         p[k] = map[static_cast<std::size_t>(v * static_cast<double>(map.size() - 1) + 0.5)];
       }
-    if (use0) color_table_lookup(t0, p);
+    // Step 4: COLOR_TABLE.
+    if (plan.tables[kColorTable]) color_table_lookup(*plan.tables[kColorTable], p);
   }
-  // Step 5: convolution, then the post-convolution scale and bias (only when a convolution
-  // ran, A14). No clamp between convolution and the colour matrix.
-  const ConvolutionFilter* filter = active_convolution(s, dims);
-  if (filter) {
-    convolve(pixels, width, height, *filter, counters);
-    for (Rgba& p : pixels)
-      for (int k = 0; k < 4; ++k)
-        p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.post_convolution_scale[k] + s.post_convolution_bias[k];
-  }
-  for (Rgba& p : pixels) {
+}
+
+void transfer_post_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std::size_t n) {
+  const PixelTransferState& s = *plan.state;
+  for (std::size_t i = 0; i < n; ++i) {
+    Rgba& p = pixels[i];
     // Step 6: POST_CONVOLUTION_COLOR_TABLE. Step 7: colour matrix with its post scale and bias.
-    if (use1) color_table_lookup(t1, p);
-    if (matrix) {
-      const Vec4 r = m * Vec4(p[0], p[1], p[2], p[3]);
+    if (plan.tables[kPostConvolutionTable]) color_table_lookup(*plan.tables[kPostConvolutionTable], p);
+    if (plan.color_matrix) {
+      const Vec4 r = *plan.matrix * Vec4(p[0], p[1], p[2], p[3]);
       for (int k = 0; k < 4; ++k)
         p[static_cast<std::size_t>(k)] = r[k] * s.post_color_matrix_scale[k] + s.post_color_matrix_bias[k];
     }
     // Step 8: POST_COLOR_MATRIX_COLOR_TABLE.
-    if (use2) color_table_lookup(t2, p);
+    if (plan.tables[kPostColorMatrixTable]) color_table_lookup(*plan.tables[kPostColorMatrixTable], p);
   }
+}
+
+void color_codes_from_reals_scalar(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < 4; ++k)
+      out[4 * i + k] = static_cast<std::uint16_t>(clamp_nan_low(pixels[i][k], 0.0, 1.0) * max[k] + 0.5);
+}
+
+void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
+  (transfer_has_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
+}
+
+bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
+                   Counters& counters, int dims, std::vector<Rgba>* spare) {
+  const TransferPlan plan = plan_transfer(s, m);
+  const bool wide = transfer_has_avx2();
+  const std::uint64_t n_in = pixels.size();
+  (wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar)(plan, pixels.data(),
+                                                                                              pixels.size());
+  // Step 5: convolution, then the post-convolution scale and bias (only when a convolution
+  // ran, A14). No clamp between convolution and the colour matrix.
+  const ConvolutionFilter* filter = active_convolution(s, dims);
+  if (filter) {
+    convolve(pixels, width, height, *filter, counters, ConvolutionKernel::Fastest, spare);
+    for (Rgba& p : pixels)
+      for (int k = 0; k < 4; ++k)
+        p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.post_convolution_scale[k] + s.post_convolution_bias[k];
+  }
+  (wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar)(plan, pixels.data(), pixels.size());
+  const bool scale_bias = plan.scale_bias, matrix = plan.color_matrix;
+  const bool use0 = plan.tables[0] != nullptr, use1 = plan.tables[1] != nullptr, use2 = plan.tables[2] != nullptr;
   const std::uint64_t n = pixels.size();
   if (scale_bias) counters.pixels_scale_bias += n_in;
   if (s.map_color) counters.pixels_mapped += n_in;
@@ -127,6 +166,129 @@ bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTran
   }
   return true;
 }
+
+// ---------------------------------------------------------------- AVX2 row kernels
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+namespace {
+
+// A colour table as the kernel reads it: component k is looked up at its own index and
+// takes the entry's component `from[k]` where `replace` has it (Table 3.13, as the switch
+// in color_table_lookup spells out case by case).
+struct TableLookup {
+  const Rgba* entries = nullptr;
+  double w1 = 0.0;
+  bool replace[4] = {};
+  int from[4] = {0, 0, 0, 0};
+};
+
+TableLookup table_lookup(const ColorTable* t) {
+  TableLookup l;
+  if (!t) return l;
+  l.entries = t->entries.data();
+  l.w1 = static_cast<double>(t->entries.size() - 1);
+  const bool alpha = t->base == GL_ALPHA || t->base == GL_LUMINANCE_ALPHA || t->base == GL_INTENSITY ||
+                     t->base == GL_RGBA;
+  const bool colour = t->base != GL_ALPHA;
+  const bool single = t->base == GL_LUMINANCE || t->base == GL_LUMINANCE_ALPHA || t->base == GL_INTENSITY;
+  for (int k = 0; k < 3; ++k) {
+    l.replace[k] = colour;
+    l.from[k] = single ? 0 : k;
+  }
+  l.replace[3] = alpha;
+  l.from[3] = t->base == GL_INTENSITY ? 0 : 3;
+  return l;
+}
+
+__attribute__((target("avx2"))) inline __m256d load_rgba(const Rgba& p) { return _mm256_loadu_pd(p.data()); }
+__attribute__((target("avx2"))) inline __m256d to_vec(const Vec4& v) { return _mm256_setr_pd(v[0], v[1], v[2], v[3]); }
+
+// clamp_nan_low(c, 0, 1): MAXPD returns its second operand (0) when c is NaN.
+__attribute__((target("avx2"))) inline __m256d clamp_unit(__m256d c) {
+  return _mm256_min_pd(_mm256_max_pd(c, _mm256_setzero_pd()), _mm256_set1_pd(1.0));
+}
+
+__attribute__((target("avx2"))) inline __m256d lookup(const TableLookup& t, __m256d c, __m256d mask) {
+  // The index ⌊clamp(c)·(W − 1) + ½⌋ of every component (the argument is >= 0.5: truncation
+  // is the floor); all four lie in [0, W − 1], so every load is inside the table.
+  alignas(16) std::int32_t index[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(index),
+                  _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(clamp_unit(c), _mm256_set1_pd(t.w1)), _mm256_set1_pd(0.5))));
+  const __m256d looked_up = _mm256_setr_pd(t.entries[index[0]][static_cast<std::size_t>(t.from[0])],
+                                           t.entries[index[1]][static_cast<std::size_t>(t.from[1])],
+                                           t.entries[index[2]][static_cast<std::size_t>(t.from[2])],
+                                           t.entries[index[3]][static_cast<std::size_t>(t.from[3])]);
+  return _mm256_blendv_pd(c, looked_up, mask);
+}
+
+__attribute__((target("avx2"))) inline __m256d replace_mask(const TableLookup& t) {
+  return _mm256_castsi256_pd(_mm256_setr_epi64x(t.replace[0] ? -1 : 0, t.replace[1] ? -1 : 0, t.replace[2] ? -1 : 0,
+                                                t.replace[3] ? -1 : 0));
+}
+
+}  // namespace
+
+__attribute__((target("avx2"))) void transfer_pre_convolution_avx2(const TransferPlan& plan, Rgba* pixels,
+                                                                   std::size_t n) {
+  const PixelTransferState& s = *plan.state;
+  const __m256d scale = to_vec(s.scale), bias = to_vec(s.bias);
+  const TableLookup table = table_lookup(plan.tables[kColorTable]);
+  const __m256d mask = replace_mask(table);
+  for (std::size_t i = 0; i < n; ++i) {
+    __m256d c = load_rgba(pixels[i]);
+    if (plan.scale_bias) c = _mm256_add_pd(_mm256_mul_pd(c, scale), bias);
+    if (table.entries) c = lookup(table, c, mask);
+    _mm256_storeu_pd(pixels[i].data(), c);
+  }
+}
+
+__attribute__((target("avx2"))) void transfer_post_convolution_avx2(const TransferPlan& plan, Rgba* pixels,
+                                                                    std::size_t n) {
+  const PixelTransferState& s = *plan.state;
+  const TableLookup post_convolution = table_lookup(plan.tables[kPostConvolutionTable]);
+  const TableLookup post_matrix = table_lookup(plan.tables[kPostColorMatrixTable]);
+  const __m256d mask1 = replace_mask(post_convolution), mask2 = replace_mask(post_matrix);
+  const Mat4& m = *plan.matrix;
+  const __m256d col0 = to_vec(m[0]), col1 = to_vec(m[1]), col2 = to_vec(m[2]), col3 = to_vec(m[3]);
+  const __m256d scale = to_vec(s.post_color_matrix_scale), bias = to_vec(s.post_color_matrix_bias);
+  for (std::size_t i = 0; i < n; ++i) {
+    __m256d c = load_rgba(pixels[i]);
+    if (post_convolution.entries) c = lookup(post_convolution, c, mask1);
+    if (plan.color_matrix) {
+      // M·c as GLM evaluates it: (m0·c0 + m1·c1) + (m2·c2 + m3·c3), column by column.
+      const __m256d sum01 = _mm256_add_pd(_mm256_mul_pd(col0, _mm256_permute4x64_pd(c, 0x00)),
+                                          _mm256_mul_pd(col1, _mm256_permute4x64_pd(c, 0x55)));
+      const __m256d sum23 = _mm256_add_pd(_mm256_mul_pd(col2, _mm256_permute4x64_pd(c, 0xAA)),
+                                          _mm256_mul_pd(col3, _mm256_permute4x64_pd(c, 0xFF)));
+      c = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(sum01, sum23), scale), bias);
+    }
+    if (post_matrix.entries) c = lookup(post_matrix, c, mask2);
+    _mm256_storeu_pd(pixels[i].data(), c);
+  }
+}
+
+__attribute__((target("avx2"))) void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double max[4],
+                                                                 std::uint16_t* out) {
+  const __m256d scale = _mm256_loadu_pd(max), half = _mm256_set1_pd(0.5);
+  for (std::size_t i = 0; i < n; ++i) {
+    const __m128i codes = _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_mul_pd(clamp_unit(load_rgba(pixels[i])), scale), half));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + 4 * i), _mm_packus_epi32(codes, codes));  // codes < 2^16
+  }
+}
+
+bool transfer_has_avx2() { return __builtin_cpu_supports("avx2"); }
+#else
+void transfer_pre_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n) {
+  transfer_pre_convolution_scalar(plan, pixels, n);
+}
+void transfer_post_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n) {
+  transfer_post_convolution_scalar(plan, pixels, n);
+}
+void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
+  color_codes_from_reals_scalar(pixels, n, max, out);
+}
+bool transfer_has_avx2() { return false; }
+#endif
 
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& s) {
   if (s.depth_scale == 1.0 && s.depth_bias == 0.0) return;

@@ -70,12 +70,40 @@ const ConvolutionFilter* active_convolution(const PixelTransferState& state, int
 // round(clamp(c, 0, 1)·(W − 1)) (Table 3.13); the others pass unchanged and unclamped.
 void color_table_lookup(const ColorTable& table, Rgba& c);
 
+// The per-call constants of the per-pixel steps before the convolution (2 scale and bias,
+// 3 MAP_COLOR, 4 COLOR_TABLE) and after it (6 POST_CONVOLUTION_COLOR_TABLE, 7 colour matrix
+// and its scale and bias, 8 POST_COLOR_MATRIX_COLOR_TABLE), for the row kernels below.
+struct TransferPlan {
+  const PixelTransferState* state = nullptr;
+  const Mat4* matrix = nullptr;
+  bool scale_bias = false, map_color = false, color_matrix = false;
+  const ColorTable* tables[3] = {};  // nullptr where the table is disabled or empty
+};
+TransferPlan plan_transfer(const PixelTransferState& state, const Mat4& color_matrix);
+
+// Steps 2-4 and 6-8 over n pixels in place. The scalar functions are the reference; the
+// AVX2 ones (one pixel's four components per instruction) compute the same IEEE operations
+// in the same order and agree bit for bit (tests/pixel_transfer_kernels_test.cpp). The AVX2
+// pre-convolution kernel does not do MAP_COLOR (the caller uses the scalar one then).
+void transfer_pre_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std::size_t n);
+void transfer_pre_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n);
+void transfer_post_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std::size_t n);
+void transfer_post_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n);
+bool transfer_has_avx2();
+
+// The final conversion of a pixel rectangle's colours (§3.6.4, §2.13.9): clamp each
+// component to [0, 1] (NaN to 0), then code = ⌊c·max_k + ½⌋; four codes per pixel.
+void color_codes_from_reals_scalar(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out);
+void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out);
+void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out);
+
 // Applies the RGBA transfer operations to a width x height image in place, in the spec's
 // order; a REDUCE convolution changes width and height. `dims` is 1 for 1D textures.
 // Returns false when a histogram or minmax sink consumed the pixels (nothing further is
 // drawn, returned or stored).
+// `spare`: storage for the convolution's output (see convolve).
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& state,
-                   const Mat4& color_matrix, Counters& counters, int dims = 2);
+                   const Mat4& color_matrix, Counters& counters, int dims = 2, std::vector<Rgba>* spare = nullptr);
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& state);
 
 }  // namespace passim
