@@ -453,6 +453,21 @@ class Context {
   // Rasterizes a pixel rectangle at the raster position with the zoom rule; colours from
   // `rgba` (after transfer) or, for depth rectangles, the raster colour with `depth` values.
   void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth);
+  // A20: the window pixels a width x height rectangle drawn at the raster position with the
+  // pixel zoom covers. The columns are the same in every row: window column x_first + c shows
+  // source column source_column[c] (increasing x; contiguous, since the groups tile
+  // [xr, xr + zx·width)); source row j covers window rows rows[j][0] … rows[j][1].
+  struct RectanglePlacement {
+    int x_first = 0;
+    std::vector<int> source_column;
+    bool identity = false;  // source_column[c] == c for every source column (zoom 1, all inside)
+    std::vector<std::array<int, 2>> rows;
+  };
+  RectanglePlacement place_rectangle(int width, int height) const;
+  // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the
+  // stencil writemask only.
+  void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);
+  void read_framebuffer_stencil(int x, int y, int width, int height, std::vector<double>& out) const;
 
   Framebuffer fb_;
   MachineProfile profile_;

@@ -82,15 +82,18 @@ void Context::glPixelTransferf(GLenum pname, GLfloat param) {
     case GL_POST_CONVOLUTION_ALPHA_BIAS: t.post_convolution_bias.a = v; break;
     case GL_MAP_COLOR: t.map_color = v != 0.0; break;
     case GL_MAP_STENCIL: t.map_stencil = v != 0.0; break;
-    case GL_INDEX_SHIFT: t.index_shift = static_cast<int>(v); break;
-    case GL_INDEX_OFFSET: t.index_offset = static_cast<int>(v); break;
+    case GL_INDEX_SHIFT: t.index_shift = int_param(v); break;
+    case GL_INDEX_OFFSET: t.index_offset = int_param(v); break;
     default: return set_error(GL_INVALID_ENUM);
   }
 }
 
 void Context::glPixelTransferi(GLenum pname, GLint param) {
   PASSIM_ENTRY(pname, param)
-  glPixelTransferf(pname, static_cast<GLfloat>(param));
+  // The index parameters are integers: kept exactly (a float would round 2^24 + 1).
+  if (pname == GL_INDEX_SHIFT) transfer_.index_shift = param;
+  else if (pname == GL_INDEX_OFFSET) transfer_.index_offset = param;
+  else glPixelTransferf(pname, static_cast<GLfloat>(param));
 }
 
 // ---------------------------------------------------------------- pixel maps (§3.6.3)
@@ -221,17 +224,11 @@ void Context::glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yor
   raster_.window.y += ymove;
 }
 
-void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
-                                   const std::vector<double>* depth) {
-  Counters& c = counters();
-  c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  TriangleOptions options;
-  prepare_fragment_stages(options);
-  FragmentSink& sink = fragment_sink();
-  const RasterVertex& rp = raster_.window;
+Context::RectanglePlacement Context::place_rectangle(int width, int height) const {
   // A20: the raster position is rounded (⌊x + ½⌋), then group (i, j) covers
   // [x + zx·i, x + zx·(i+1)) × [y + zy·j, y + zy·(j+1)); a fragment is produced for each pixel
   // whose centre lies inside or on the bottom/left boundary.
+  const RasterVertex& rp = raster_.window;
   const double xr = round_half_up(rp.x), yr = round_half_up(rp.y);
   const double zx = zoom_x_, zy = zoom_y_;
   auto pixel_range = [](double a, double b, int limit, int& lo, int& hi) {
@@ -246,12 +243,7 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
     lo = static_cast<int>(std::clamp(first, 0.0, static_cast<double>(limit)));
     hi = static_cast<int>(std::clamp(last, -1.0, static_cast<double>(limit - 1)));
   };
-  const RasterFragments raster = raster_fragments(options);
-  // The window columns the groups of a row cover are the same in every row: window column
-  // x_first + c shows source column source_column[c] (increasing x; contiguous, since the
-  // groups tile [xr, xr + zx·width)).
-  std::vector<int> source_column;
-  int x_first = 0;
+  RectanglePlacement placement;
   const int xr_int = static_cast<int>(std::clamp(xr, -1.0e9, 1.0e9));
   for (int step = 0; step < width; ++step) {
     const int i = zx >= 0 ? step : width - 1 - step;
@@ -264,14 +256,34 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
       pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
     }
     for (int x = lo; x <= hi; ++x) {
-      if (source_column.empty()) x_first = x;
-      source_column.push_back(i);
+      if (placement.source_column.empty()) placement.x_first = x;
+      placement.source_column.push_back(i);
     }
   }
+  const std::vector<int>& columns = placement.source_column;
+  placement.identity = static_cast<int>(columns.size()) == width;
+  for (std::size_t c = 0; placement.identity && c < columns.size(); ++c)
+    placement.identity = columns[c] == static_cast<int>(c);
+  placement.rows.resize(static_cast<std::size_t>(height));
+  for (int j = 0; j < height; ++j) {
+    std::array<int, 2>& r = placement.rows[static_cast<std::size_t>(j)];
+    pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), r[0], r[1]);
+  }
+  return placement;
+}
+
+void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
+                                   const std::vector<double>* depth) {
+  Counters& c = counters();
+  c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  TriangleOptions options;
+  prepare_fragment_stages(options);
+  FragmentSink& sink = fragment_sink();
+  const RasterFragments raster = raster_fragments(options);
+  const RectanglePlacement placement = place_rectangle(width, height);
+  const std::vector<int>& source_column = placement.source_column;
   const int count = static_cast<int>(source_column.size());
   if (count == 0) return;
-  bool identity = count == width;  // every source column once, in order (zoom 1, all inside)
-  for (int c = 0; identity && c < count; ++c) identity = source_column[static_cast<std::size_t>(c)] == c;
   // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point — once per source row.
   double color_max[4];
   for (int k = 0; k < 4; ++k) color_max[k] = static_cast<double>(max_code(fragment_bits_[k]));
@@ -279,8 +291,7 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
   std::vector<std::uint32_t> row_depth(rgba ? 0 : static_cast<std::size_t>(width));
   SpanBuffers& buf = scratch_->spans;
   for (int j = 0; j < height; ++j) {
-    int row_lo, row_hi;
-    pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), row_lo, row_hi);
+    const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
     if (row_lo > row_hi) continue;
     const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(width);
     if (rgba) {
@@ -292,22 +303,65 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
     }
     for (int y = row_lo; y <= row_hi; ++y) {
       // The stages after this may change the span's colours: each window row starts afresh.
-      FragmentSpan span = buf.span(y, x_first, count);
+      FragmentSpan span = buf.span(y, placement.x_first, count);
       raster.put(span, 0, count, !rgba, rgba != nullptr);
-      if (rgba && identity) {
+      if (rgba && placement.identity) {
         std::copy(row_codes.begin(), row_codes.begin() + 4 * count, span.rgba);
       } else if (rgba) {
-        for (int c = 0; c < count; ++c)
-          std::copy_n(&row_codes[4 * static_cast<std::size_t>(source_column[static_cast<std::size_t>(c)])], 4,
-                      span.rgba + 4 * c);
+        for (int k = 0; k < count; ++k)
+          std::copy_n(&row_codes[4 * static_cast<std::size_t>(source_column[static_cast<std::size_t>(k)])], 4,
+                      span.rgba + 4 * k);
       } else {
-        for (int c = 0; c < count; ++c)
-          span.depth[c] = row_depth[static_cast<std::size_t>(source_column[static_cast<std::size_t>(c)])];
+        for (int k = 0; k < count; ++k)
+          span.depth[k] = row_depth[static_cast<std::size_t>(source_column[static_cast<std::size_t>(k)])];
       }
       c.fragments_generated += static_cast<std::uint64_t>(count);
       sink.process(span);
     }
   }
+}
+
+void Context::draw_stencil_rectangle(int width, int height, const std::vector<double>& indices) {
+  Counters& c = counters();
+  c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  const RectanglePlacement placement = place_rectangle(width, height);
+  const int bits = fb_.config.stencil_bits;
+  const auto mask = static_cast<std::uint8_t>(fb_control_.stencil_writemask & max_code(bits));
+  // §4.3.1: pixel ownership (the window) and the scissor test only; no fragment is produced.
+  int x_lo = 0, x_hi = fb_.width(), y_lo = 0, y_hi = fb_.height();
+  if (fragment_.scissor_enabled) {
+    x_lo = std::max(x_lo, fragment_.scissor_x);
+    y_lo = std::max(y_lo, fragment_.scissor_y);
+    x_hi = static_cast<int>(std::min<std::int64_t>(x_hi, std::int64_t{fragment_.scissor_x} + fragment_.scissor_width));
+    y_hi = static_cast<int>(std::min<std::int64_t>(y_hi, std::int64_t{fragment_.scissor_y} + fragment_.scissor_height));
+  }
+  std::uint64_t written = 0;
+  for (int j = 0; j < height; ++j) {
+    const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
+    for (int y = std::max(row_lo, y_lo); y <= row_hi && y < y_hi; ++y)
+      for (std::size_t k = 0; k < placement.source_column.size(); ++k) {
+        const int x = placement.x_first + static_cast<int>(k);
+        if (x < x_lo || x >= x_hi) continue;
+        const double index = indices[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
+                                     static_cast<std::size_t>(placement.source_column[k])];
+        std::uint8_t& s = fb_.stencil[fb_.pixel_index(x, y)];
+        s = static_cast<std::uint8_t>((s & ~mask) | (index_low_bits(index, bits) & mask));
+        ++written;
+      }
+  }
+  c.stencil_bits_written += written * static_cast<std::uint64_t>(bits);
+}
+
+void Context::read_framebuffer_stencil(int x, int y, int width, int height, std::vector<double>& out) const {
+  // Pixels outside the window are undefined: they read as 0 here, as colour and depth do.
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const std::int64_t px = std::int64_t{x} + i, py = std::int64_t{y} + j;
+      if (px < 0 || py < 0 || px >= fb_.width() || py >= fb_.height()) continue;
+      out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] =
+          fb_.stencil[fb_.pixel_index(static_cast<int>(px), static_cast<int>(py))];
+    }
 }
 
 
@@ -316,9 +370,17 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
                image_arg(pixels, width, height, format, type))
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
-  if (format == GL_STENCIL_INDEX || format == GL_COLOR_INDEX) {
-    if (format == GL_STENCIL_INDEX && fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
-    warn_once(fmt::format("glDrawPixels with {} is not modelled yet: ignored", enum_name(format)));
+  if (format == GL_STENCIL_INDEX && fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
+  if (format == GL_COLOR_INDEX) {
+    warn_once("glDrawPixels with GL_COLOR_INDEX is not modelled yet: ignored");
+    return;
+  }
+  if (format == GL_STENCIL_INDEX) {
+    if (!raster_.valid || width == 0 || height == 0 || !pixels) return;
+    std::vector<double> indices;
+    unpack_indices(pixels, width, height, format, type, pixel_store_.unpack, indices);
+    transfer_stencil(indices, transfer_, counters());
+    draw_stencil_rectangle(width, height, indices);
     return;
   }
   if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
@@ -346,7 +408,14 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   if (format == GL_COLOR_INDEX) return set_error(GL_INVALID_OPERATION);  // RGBA mode
   if (format == GL_STENCIL_INDEX) {
     if (fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
-    warn_once("glReadPixels with GL_STENCIL_INDEX is not modelled yet: nothing is written");
+    if (width == 0 || height == 0) return;
+    Counters& c = counters();
+    c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    std::vector<double> indices;
+    read_framebuffer_stencil(x, y, width, height, indices);
+    c.stencil_bits_read += indices.size() * static_cast<std::uint64_t>(fb_.config.stencil_bits);
+    transfer_stencil(indices, transfer_, c);
+    pack_indices(indices, width, height, type, pixel_store_.pack, pixels);
     return;
   }
   if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
@@ -379,15 +448,17 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if ((type == GL_DEPTH && fb_.config.depth_bits == 0) || (type == GL_STENCIL && fb_.config.stencil_bits == 0))
     return set_error(GL_INVALID_OPERATION);
-  if (type == GL_STENCIL) {
-    warn_once("glCopyPixels(GL_STENCIL) is not modelled yet: ignored");
-    return;
-  }
   if (!raster_.valid || width == 0 || height == 0) return;
   Counters& c = counters();
   c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   // A22: the whole source is read (through the transfer operations, once) before drawing.
-  if (type == GL_DEPTH) {
+  if (type == GL_STENCIL) {
+    std::vector<double> indices;
+    read_framebuffer_stencil(x, y, width, height, indices);
+    c.stencil_bits_read += indices.size() * static_cast<std::uint64_t>(fb_.config.stencil_bits);
+    transfer_stencil(indices, transfer_, c);
+    draw_stencil_rectangle(width, height, indices);
+  } else if (type == GL_DEPTH) {
     std::vector<double> depth;
     read_framebuffer_depth(x, y, width, height, depth);
     c.depth_bits_read += depth.size() * static_cast<std::uint64_t>(fb_.config.depth_bits);

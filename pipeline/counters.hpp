@@ -48,7 +48,7 @@ struct Counters {
   std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
   std::uint64_t pixels_scale_bias = 0;
   std::uint64_t pixels_color_matrix = 0;
-  std::uint64_t pixels_mapped = 0;  // groups through MAP_COLOR
+  std::uint64_t pixels_mapped = 0;  // groups through MAP_COLOR or MAP_STENCIL
   std::uint64_t pixels_convolved = 0;
   std::uint64_t convolution_taps = 0;               // multiply-adds (per pixel and tap)
   std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE

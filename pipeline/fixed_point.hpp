@@ -56,6 +56,18 @@ inline double quantise(double c, int bits) {
   return fixed_to_float(float_to_fixed(c, bits), bits);
 }
 
+// Indices (§3.6.5 "arithmetic on indices", §4.3.1, Table 4.6) are fixed-point values kept as
+// doubles (exact for every integer index and every fraction a FLOAT index or a right shift
+// makes); their integer part is the floor (two's complement) and "ANDed with 2^b − 1" is
+// that integer modulo 2^b. A NaN or infinite index has no integer part: 0 (A27).
+inline std::uint64_t index_low_bits(double index, int bits) {
+  if (!std::isfinite(index)) return 0;
+  const double modulus = std::ldexp(1.0, bits);
+  double m = std::fmod(std::floor(index), modulus);  // exact
+  if (m < 0.0) m += modulus;
+  return static_cast<std::uint64_t>(m);
+}
+
 // Re-express a code at `from` bits at `to` bits (A2: round(u * (2^to-1)/(2^from-1))).
 inline std::uint32_t rescale_code(std::uint32_t k, int from, int to) {
   if (from == to) return k;

@@ -11,6 +11,13 @@
 namespace passim {
 namespace {
 
+// One element of `size` bytes to client memory, its bytes reversed under SWAP_BYTES.
+void write_element(std::byte* p, std::byte* b, int size, bool swap) {
+  if (swap)
+    for (int i = 0; i < size / 2; ++i) std::swap(b[i], b[size - 1 - i]);
+  std::memcpy(p, b, static_cast<std::size_t>(size));
+}
+
 void store(std::byte* p, GLenum type, double f, bool swap) {
   f = clamp_nan_low(f, 0.0, 1.0);
   std::byte b[8] = {};
@@ -25,17 +32,17 @@ void store(std::byte* p, GLenum type, double f, bool swap) {
     case GL_FLOAT: put(static_cast<float>(f)); break;
     default: return;
   }
-  const int size = type_size(type);
-  if (swap)
-    for (int i = 0; i < size / 2; ++i) std::swap(b[i], b[size - 1 - i]);
-  std::memcpy(p, b, static_cast<std::size_t>(size));
+  write_element(p, b, type_size(type), swap);
 }
 
 }  // namespace
 
-void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum format, GLenum type,
-               const PixelStore& s, void* out) {
-  const int n = format_components(format), size = type_size(type);
+namespace {
+
+// §4.3.2: group (x, y) of a width x height image of n components of `size` bytes, placed by
+// the pack modes (as §3.6.4 places unpacked groups).
+template <class F>
+void for_each_packed_group(void* out, int width, int height, int n, int size, const PixelStore& s, F&& f) {
   const std::size_t l = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
   const std::size_t k = static_cast<std::size_t>(s.alignment), sz = static_cast<std::size_t>(size);
   const std::size_t stride = sz >= k ? static_cast<std::size_t>(n) * l * sz
@@ -43,23 +50,52 @@ void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum fo
   std::byte* base = static_cast<std::byte*>(out) + static_cast<std::size_t>(s.skip_rows) * stride +
                     static_cast<std::size_t>(s.skip_pixels) * static_cast<std::size_t>(n * size);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const Rgba& c = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
-      std::byte* p = base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size);
-      double v[4] = {0, 0, 0, 0};
-      switch (format) {
-        case GL_RED: case GL_LUMINANCE: case GL_DEPTH_COMPONENT: v[0] = c[0]; break;
-        case GL_GREEN: v[0] = c[1]; break;
-        case GL_BLUE: v[0] = c[2]; break;
-        case GL_ALPHA: v[0] = c[3]; break;
-        case GL_LUMINANCE_ALPHA: v[0] = c[0]; v[1] = c[3]; break;
-        case GL_RGB: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; break;
-        case GL_BGR: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; break;
-        case GL_BGRA: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; v[3] = c[3]; break;
-        default: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; v[3] = c[3]; break;
-      }
-      for (int m = 0; m < n; ++m) store(p + m * size, type, v[m], s.swap_bytes);
+    for (int x = 0; x < width; ++x)
+      f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x),
+        base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size));
+}
+
+}  // namespace
+
+void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum format, GLenum type,
+               const PixelStore& s, void* out) {
+  const int n = format_components(format), size = type_size(type);
+  for_each_packed_group(out, width, height, n, size, s, [&](std::size_t i, std::byte* p) {
+    const Rgba& c = pixels[i];
+    double v[4] = {0, 0, 0, 0};
+    switch (format) {
+      case GL_RED: case GL_LUMINANCE: case GL_DEPTH_COMPONENT: v[0] = c[0]; break;
+      case GL_GREEN: v[0] = c[1]; break;
+      case GL_BLUE: v[0] = c[2]; break;
+      case GL_ALPHA: v[0] = c[3]; break;
+      case GL_LUMINANCE_ALPHA: v[0] = c[0]; v[1] = c[3]; break;
+      case GL_RGB: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; break;
+      case GL_BGR: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; break;
+      case GL_BGRA: v[0] = c[2]; v[1] = c[1]; v[2] = c[0]; v[3] = c[3]; break;
+      default: v[0] = c[0]; v[1] = c[1]; v[2] = c[2]; v[3] = c[3]; break;
     }
+    for (int m = 0; m < n; ++m) store(p + m * size, type, v[m], s.swap_bytes);
+  });
+}
+
+void pack_indices(const std::vector<double>& indices, int width, int height, GLenum type, const PixelStore& s,
+                  void* out) {
+  const int size = type_size(type);
+  for_each_packed_group(out, width, height, 1, size, s, [&](std::size_t i, std::byte* p) {
+    std::byte b[4] = {};
+    auto put = [&](auto v) { std::memcpy(b, &v, sizeof(v)); };
+    const double index = indices[i];
+    switch (type) {
+      case GL_UNSIGNED_BYTE: put(static_cast<std::uint8_t>(index_low_bits(index, 8))); break;
+      case GL_BYTE: put(static_cast<std::int8_t>(index_low_bits(index, 7))); break;
+      case GL_UNSIGNED_SHORT: put(static_cast<std::uint16_t>(index_low_bits(index, 16))); break;
+      case GL_SHORT: put(static_cast<std::int16_t>(index_low_bits(index, 15))); break;
+      case GL_UNSIGNED_INT: put(static_cast<std::uint32_t>(index_low_bits(index, 32))); break;
+      case GL_INT: put(static_cast<std::int32_t>(index_low_bits(index, 31))); break;
+      default: put(static_cast<float>(std::isfinite(index) ? std::floor(index) : 0.0)); break;  // FLOAT
+    }
+    write_element(p, b, size, s.swap_bytes);
+  });
 }
 
 }  // namespace passim

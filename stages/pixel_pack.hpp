@@ -12,5 +12,10 @@ namespace passim {
 // R (GetTexImage of a luminance texture returns L in R), LUMINANCE_ALPHA is R and A.
 void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum format, GLenum type,
                const PixelStore& store, void* out);
+// Writes width x height indices (STENCIL_INDEX, COLOR_INDEX) as `type`: the integer part
+// masked with Table 4.6 (2^8 − 1 for UNSIGNED_BYTE, 2^7 − 1 for BYTE, …), or for FLOAT the
+// integer part as a float.
+void pack_indices(const std::vector<double>& indices, int width, int height, GLenum type, const PixelStore& store,
+                  void* out);
 
 }  // namespace passim

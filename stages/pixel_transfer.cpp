@@ -3,6 +3,8 @@
 #include "pipeline/fixed_point.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -289,6 +291,16 @@ void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double
 }
 bool transfer_has_avx2() { return false; }
 #endif
+
+void transfer_stencil(std::vector<double>& indices, const PixelTransferState& s, Counters& counters) {
+  const std::vector<double>& map = s.other_maps[GL_PIXEL_MAP_S_TO_S - GL_PIXEL_MAP_I_TO_I];
+  const int map_bits = std::countr_zero(map.size());  // the size is a power of two
+  for (double& index : indices) {
+    index = std::ldexp(index, s.index_shift) + static_cast<double>(s.index_offset);
+    if (s.map_stencil) index = map[index_low_bits(index, map_bits)];
+  }
+  if (s.map_stencil) counters.pixels_mapped += indices.size();
+}
 
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& s) {
   if (s.depth_scale == 1.0 && s.depth_bias == 0.0) return;

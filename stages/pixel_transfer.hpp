@@ -105,5 +105,9 @@ void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& state,
                    const Mat4& color_matrix, Counters& counters, int dims = 2, std::vector<Rgba>* spare = nullptr);
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& state);
+// Stencil indices (§3.6.5 "arithmetic on indices"): shifted by INDEX_SHIFT (left when
+// positive, right when negative, keeping the fraction), INDEX_OFFSET added, then with
+// MAP_STENCIL replaced by PIXEL_MAP_S_TO_S[integer part mod the map's size] (fixed_point.hpp).
+void transfer_stencil(std::vector<double>& indices, const PixelTransferState& state, Counters& counters);
 
 }  // namespace passim

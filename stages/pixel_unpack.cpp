@@ -134,6 +134,15 @@ void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum 
   });
 }
 
+void unpack_indices(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s,
+                    std::vector<double>& out) {
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
+  for_each_group(data, width, height, format, type, s, [&](int x, int y, const std::byte* p, int, int) {
+    out[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
+        element(p, type, s.swap_bytes, false);
+  });
+}
+
 void unpack_depth(const void* data, int width, int height, GLenum type, const PixelStore& s, std::vector<double>& out) {
   out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
   for_each_group(data, width, height, GL_DEPTH_COMPONENT, type, s, [&](int x, int y, const std::byte* p, int, int) {
