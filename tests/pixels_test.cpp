@@ -411,3 +411,81 @@ TEST(Pixels, BitmapAtAnInvalidRasterPositionDoesNothing) {
   ctx.glGetIntegerv(GL_CURRENT_RASTER_POSITION_VALID, &valid);
   EXPECT_EQ(valid, 0);
 }
+
+TEST(Imaging, TheWholeChainOnASmallImage) {
+  // Every RGBA transfer stage at once on a 2x1 FLOAT image, values by hand (all exact binary
+  // fractions until the final conversion):
+  //  p0 = (0.25, 0.5, 0.75, 1), p1 = (0.5, 0.25, 0, 0.5)
+  //  red scale 2, bias −0.25:                   p0.r = 0.25, p1.r = 0.75
+  //  COLOR_TABLE RGB, 8 entries i/8, index round(c·7): p0 = (2/8, 4/8, 5/8, 1), p1 = (5/8, 2/8, 0, 0.5)
+  //  2x1 convolution (½, ½), REDUCE -> 1x1:     (7/16, 3/8, 5/16, 3/4)
+  //  post-convolution green scale 2:            g = 3/4
+  //  POST_CONVOLUTION table ALPHA {0, ½}:       a: round(0.75) = 1 -> ½
+  //  colour matrix swapping R and B:            (5/16, 3/4, 7/16, ½)
+  //  post-matrix alpha bias ¼:                  a = ¾
+  //  POST_COLOR_MATRIX table LUMINANCE, 32 entries 1 − i/32, index round(c·31):
+  //    r: 9.6875 -> 10 -> 11/16; g: 23.25 -> 23 -> 9/32; b: 13.5625 -> 14 -> 9/16; a stays ¾
+  //  histogram (4, RGBA): indices round(c·3) = 2, 1, 2, 2; minmax = the pixel itself.
+  //  8 bits: 175.3125, 71.71875, 143.4375, 191.25 -> 175, 72, 143, 191
+  //  12 bits: 2815.3125, 1151.71875, 2303.4375, 3071.25 -> 2815, 1152, 2303, 3071
+  const std::uint32_t expected[2][4] = {{175, 72, 143, 191}, {2815, 1152, 2303, 3071}};
+  for (int b = 0; b < 2; ++b) {
+    const int bits = b ? 12 : 8;
+    Context ctx(test::small_config(2, 1, bits));
+    test::window_projection(ctx);
+    ctx.glPixelTransferf(GL_RED_SCALE, 2.0f);
+    ctx.glPixelTransferf(GL_RED_BIAS, -0.25f);
+    GLfloat table0[8 * 3];
+    for (int i = 0; i < 8; ++i) table0[3 * i] = table0[3 * i + 1] = table0[3 * i + 2] = static_cast<GLfloat>(i) / 8;
+    ctx.glColorTable(GL_COLOR_TABLE, GL_RGB, 8, GL_RGB, GL_FLOAT, table0);
+    ctx.glEnable(GL_COLOR_TABLE);
+    const GLfloat taps[8] = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+    ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 2, 1, GL_RGBA, GL_FLOAT, taps);
+    ctx.glEnable(GL_CONVOLUTION_2D);
+    ctx.glPixelTransferf(GL_POST_CONVOLUTION_GREEN_SCALE, 2.0f);
+    const GLfloat table1[2] = {0.0f, 0.5f};
+    ctx.glColorTable(GL_POST_CONVOLUTION_COLOR_TABLE, GL_ALPHA, 2, GL_ALPHA, GL_FLOAT, table1);
+    ctx.glEnable(GL_POST_CONVOLUTION_COLOR_TABLE);
+    const GLfloat swap_rb[16] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1};  // column-major
+    ctx.glMatrixMode(GL_COLOR);
+    ctx.glLoadMatrixf(swap_rb);
+    ctx.glMatrixMode(GL_MODELVIEW);
+    ctx.glPixelTransferf(GL_POST_COLOR_MATRIX_ALPHA_BIAS, 0.25f);
+    GLfloat table2[32];
+    for (int i = 0; i < 32; ++i) table2[i] = 1.0f - static_cast<GLfloat>(i) / 32;
+    ctx.glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE, 32, GL_LUMINANCE, GL_FLOAT, table2);
+    ctx.glEnable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
+    ctx.glHistogram(GL_HISTOGRAM, 4, GL_RGBA, GL_FALSE);
+    ctx.glEnable(GL_HISTOGRAM);
+    ctx.glMinmax(GL_MINMAX, GL_RGBA, GL_FALSE);
+    ctx.glEnable(GL_MINMAX);
+    ASSERT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    const GLfloat image[8] = {0.25f, 0.5f, 0.75f, 1.0f, 0.5f, 0.25f, 0.0f, 0.5f};
+    ctx.glRasterPos2i(0, 0);
+    ctx.glDrawPixels(2, 1, GL_RGBA, GL_FLOAT, image);
+    EXPECT_EQ(test::pixel(ctx, 0, 0), (std::array<std::uint32_t, 4>{expected[b][0], expected[b][1], expected[b][2],
+                                                                    expected[b][3]}))
+        << bits << " bits";
+    EXPECT_EQ(test::pixel(ctx, 1, 0), (std::array<std::uint32_t, 4>{0, 0, 0, 0}));  // REDUCE: one pixel drawn
+    GLuint counts[16];
+    ctx.glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_RGBA, GL_UNSIGNED_INT, counts);
+    const GLuint expected_counts[16] = {0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1, 1, 0, 0, 0, 0};
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(counts[i], expected_counts[i]) << "histogram entry " << i / 4 << "." << i % 4;
+    GLfloat mm[8];
+    ctx.glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_FLOAT, mm);
+    const GLfloat pixel[4] = {11.0f / 16, 9.0f / 32, 9.0f / 16, 0.75f};
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(mm[k], pixel[k]) << "min " << k;
+      EXPECT_EQ(mm[4 + k], pixel[k]) << "max " << k;
+    }
+    const Counters t = ctx.total_counters();
+    EXPECT_EQ(t.pixels_scale_bias, 2u);
+    EXPECT_EQ(t.color_table_lookups, 2u);
+    EXPECT_EQ(t.convolution_taps, 2u);
+    EXPECT_EQ(t.post_convolution_table_lookups, 1u);
+    EXPECT_EQ(t.pixels_color_matrix, 1u);
+    EXPECT_EQ(t.post_color_matrix_table_lookups, 1u);
+    EXPECT_EQ(t.histogram_updates, 1u);
+    EXPECT_EQ(t.minmax_updates, 1u);
+  }
+}
