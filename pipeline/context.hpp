@@ -423,6 +423,17 @@ class Context {
   // The size an image has after a REDUCE convolution for `dims` (unchanged otherwise).
   void reduced_size(int dims, int& width, int& height) const;
   void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
+  // A rectangle of the read buffer kept as its codes (8 bytes a pixel rather than 32), for
+  // conversion a band of rows at a time (§4.3.2: code k reads as k/(2^n − 1), A = 1 without
+  // alpha bits; pixels outside the window are undefined: they read as 0 here).
+  struct SourceCodes {
+    int width = 0, height = 0;
+    int i_lo = 0, i_hi = 0, j_lo = 0, j_hi = 0;  // the part inside the window
+    std::vector<std::uint16_t> codes;            // 4 per pixel of that part, rows bottom first
+    const double* values[4] = {};                // code -> value per channel; nullptr: no bits (1)
+    void to_reals(int first_row, int rows, Rgba* out) const;
+  };
+  SourceCodes read_framebuffer_codes(int x, int y, int width, int height) const;
   // The attributes every pixel-rectangle and bitmap fragment takes from the raster position.
   struct RasterFragments {
     std::uint16_t codes[4];
@@ -464,6 +475,12 @@ class Context {
     std::vector<std::array<int, 2>> rows;
   };
   RectanglePlacement place_rectangle(int width, int height) const;
+  // Rows [first_row, first_row + rows) of a rectangle placed by `placement`; `rgba` or `depth`
+  // holds those rows' values (width per row). `raster` comes from prepare_rectangle_fragments,
+  // called once per rectangle (it configures the fragment stages).
+  RasterFragments prepare_rectangle_fragments();
+  void draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width, int first_row,
+                       int rows, const Rgba* rgba, const double* depth);
   // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the
   // stencil writemask only.
   void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);

@@ -274,13 +274,21 @@ Context::RectanglePlacement Context::place_rectangle(int width, int height) cons
 
 void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
                                    const std::vector<double>* depth) {
-  Counters& c = counters();
-  c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  counters().pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  draw_pixel_rows(prepare_rectangle_fragments(), place_rectangle(width, height), width, 0, height,
+                  rgba ? rgba->data() : nullptr, depth ? depth->data() : nullptr);
+}
+
+Context::RasterFragments Context::prepare_rectangle_fragments() {
   TriangleOptions options;
   prepare_fragment_stages(options);
+  return raster_fragments(options);
+}
+
+void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width,
+                              int first_row, int rows, const Rgba* rgba, const double* depth) {
+  Counters& c = counters();
   FragmentSink& sink = fragment_sink();
-  const RasterFragments raster = raster_fragments(options);
-  const RectanglePlacement placement = place_rectangle(width, height);
   const std::vector<int>& source_column = placement.source_column;
   const int count = static_cast<int>(source_column.size());
   if (count == 0) return;
@@ -290,16 +298,16 @@ void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba
   std::vector<std::uint16_t> row_codes(rgba ? 4 * static_cast<std::size_t>(width) : 0);
   std::vector<std::uint32_t> row_depth(rgba ? 0 : static_cast<std::size_t>(width));
   SpanBuffers& buf = scratch_->spans;
-  for (int j = 0; j < height; ++j) {
+  for (int j = first_row; j < first_row + rows; ++j) {
     const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
     if (row_lo > row_hi) continue;
-    const std::size_t row = static_cast<std::size_t>(j) * static_cast<std::size_t>(width);
+    const std::size_t row = static_cast<std::size_t>(j - first_row) * static_cast<std::size_t>(width);
     if (rgba) {
-      color_codes_from_reals(rgba->data() + row, static_cast<std::size_t>(width), color_max, row_codes.data());
+      color_codes_from_reals(rgba + row, static_cast<std::size_t>(width), color_max, row_codes.data());
     } else {
       for (int i = 0; i < width; ++i)
         row_depth[static_cast<std::size_t>(i)] =
-            fb_.config.depth_bits ? float_to_fixed((*depth)[row + static_cast<std::size_t>(i)], fb_.config.depth_bits) : 0;
+            fb_.config.depth_bits ? float_to_fixed(depth[row + static_cast<std::size_t>(i)], fb_.config.depth_bits) : 0;
     }
     for (int y = row_lo; y <= row_hi; ++y) {
       // The stages after this may change the span's colours: each window row starts afresh.
@@ -465,14 +473,38 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     transfer_depth(depth, transfer_);
     draw_pixel_rectangle(width, height, nullptr, &depth);
   } else {
-    std::vector<Rgba>& rgba = scratch_->rectangle;
-    read_framebuffer_rgba(x, y, width, height, rgba);
     const auto& b = fb_.config.color_bits;
-    c.color_bits_read += rgba.size() * static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
-    int w = width, h = height;
-    if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, 2, &scratch_->rectangle_spare) && w > 0 &&
-        h > 0)
-      draw_pixel_rectangle(w, h, &rgba, nullptr);
+    c.color_bits_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                         static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
+    const SourceCodes source = read_framebuffer_codes(x, y, width, height);
+    if (active_convolution(transfer_, 2)) {
+      // A convolution needs its neighbours: the whole rectangle as reals, in buffers kept
+      // between calls (a fresh 32-byte-a-pixel buffer per call costs more than the filter).
+      std::vector<Rgba>& rgba = scratch_->rectangle;
+      rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+      source.to_reals(0, height, rgba.data());
+      int w = width, h = height;
+      if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, 2, &scratch_->rectangle_spare) && w > 0 &&
+          h > 0)
+        draw_pixel_rectangle(w, h, &rgba, nullptr);
+      return;
+    }
+    // Every other step is per pixel: convert, transfer and draw a band of rows at a time
+    // (the same operations in the same order as the whole rectangle at once; A22 holds, as
+    // the source was read whole above).
+    c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    const RectanglePlacement placement = place_rectangle(width, height);
+    const RasterFragments raster = prepare_rectangle_fragments();
+    constexpr int kBandRows = 16;
+    std::vector<Rgba> band(static_cast<std::size_t>(width) * static_cast<std::size_t>(std::min(height, kBandRows)));
+    for (int j = 0; j < height; j += kBandRows) {
+      int rows = std::min(kBandRows, height - j), w = width;
+      band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
+      source.to_reals(j, rows, band.data());
+      // A histogram or minmax sink counts every band and draws none.
+      if (transfer_rgba(band, w, rows, transfer_, transform_.color.back(), c))
+        draw_pixel_rows(raster, placement, width, j, rows, band.data(), nullptr);
+    }
   }
 }
 

@@ -313,28 +313,49 @@ void Context::glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint y
   tex_sub_image(target, 2, level, xoffset, yoffset, width, height, format, type, pixels);
 }
 
-void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const {
-  // §4.3.2: read-buffer codes as k/(2^n − 1), A = 1 without alpha bits; pixels outside the
-  // window are undefined: they read as 0 here.
-  const ColorPlane* plane = color_buffer(pixel_.read_buffer);
+Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, int height) const {
+  SourceCodes src;
+  src.width = width;
+  src.height = height;
   const auto& bits = fb_.config.color_bits;
-  const double* values[4];
-  for (int k = 0; k < 4; ++k) values[k] = bits[k] ? code_values(bits[k]) : nullptr;
-  out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  const bool inside = x >= 0 && y >= 0 && std::int64_t{x} + width <= fb_.width() && std::int64_t{y} + height <= fb_.height();
-  if (!inside) std::fill(out.begin(), out.end(), Rgba{0, 0, 0, 0});  // every pixel inside is written below
-  // The columns inside the window, the same for every row.
-  const auto first = std::clamp<std::int64_t>(-std::int64_t{x}, 0, width);
-  const int i_lo = static_cast<int>(first);
-  const int i_hi = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{fb_.width()} - x, first, width));
-  for (int j = 0; j < height && i_lo < i_hi; ++j) {
-    const std::int64_t py = std::int64_t{y} + j;
-    if (py < 0 || py >= fb_.height()) continue;
-    const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(x + i_lo, static_cast<int>(py))];
-    Rgba* o = &out[static_cast<std::size_t>(j) * static_cast<std::size_t>(width)];
+  for (int k = 0; k < 4; ++k) src.values[k] = bits[k] ? code_values(bits[k]) : nullptr;
+  auto inside = [](int origin, int size, int limit, int& lo, int& hi) {
+    const auto first = std::clamp<std::int64_t>(-std::int64_t{origin}, 0, size);
+    lo = static_cast<int>(first);
+    hi = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{limit} - origin, first, size));
+  };
+  inside(x, width, fb_.width(), src.i_lo, src.i_hi);
+  inside(y, height, fb_.height(), src.j_lo, src.j_hi);
+  const std::size_t row = 4 * static_cast<std::size_t>(src.i_hi - src.i_lo);
+  src.codes.resize(row * static_cast<std::size_t>(src.j_hi - src.j_lo));
+  const ColorPlane* plane = color_buffer(pixel_.read_buffer);
+  for (int j = src.j_lo; j < src.j_hi && row > 0; ++j) {
+    const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(x + src.i_lo, y + j)];
+    std::copy_n(c, row, src.codes.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(j - src.j_lo)));
+  }
+  return src;
+}
+
+void Context::SourceCodes::to_reals(int first_row, int rows, Rgba* out) const {
+  const std::size_t w = static_cast<std::size_t>(width);
+  for (int j = first_row; j < first_row + rows; ++j) {
+    Rgba* o = out + static_cast<std::size_t>(j - first_row) * w;
+    if (j < j_lo || j >= j_hi || i_lo >= i_hi) {
+      std::fill(o, o + w, Rgba{0, 0, 0, 0});
+      continue;
+    }
+    std::fill(o, o + i_lo, Rgba{0, 0, 0, 0});
+    std::fill(o + i_hi, o + w, Rgba{0, 0, 0, 0});
+    const std::uint16_t* c = codes.data() + 4 * static_cast<std::size_t>(i_hi - i_lo) * static_cast<std::size_t>(j - j_lo);
     for (int i = i_lo; i < i_hi; ++i, c += 4)
       for (int k = 0; k < 4; ++k) o[i][static_cast<std::size_t>(k)] = values[k] ? values[k][c[k]] : 1.0;
   }
+}
+
+void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const {
+  const SourceCodes src = read_framebuffer_codes(x, y, width, height);
+  out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  src.to_reals(0, height, out.data());
 }
 
 void Context::read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const {

@@ -489,3 +489,52 @@ TEST(Imaging, TheWholeChainOnASmallImage) {
     EXPECT_EQ(t.minmax_updates, 1u);
   }
 }
+
+TEST(Pixels, BandedCopyEqualsTheWholeRectangleCopy) {
+  // glCopyPixels without a convolution converts, transfers and draws 16 rows at a time; with
+  // a 1x1 identity convolution (c·1 + 0 = c exactly for these non-negative values) it takes
+  // the whole rectangle at once. A 37-row copy with zoom 1.5 x −0.75, a colour table, the
+  // colour matrix and a histogram must give the same planes and the same counts both ways.
+  auto run = [](bool whole, std::vector<std::uint16_t>& plane, std::vector<GLuint>& counts) {
+    Context ctx(test::small_config(64, 80, 12));
+    test::window_projection(ctx);
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 30; ++x) {
+        ctx.glColor4f(static_cast<float>(x) / 30, static_cast<float>(y) / 40, static_cast<float>((x * y) % 7) / 7, 0.5f);
+        ctx.glRectf(static_cast<float>(x), static_cast<float>(y), static_cast<float>(x + 1), static_cast<float>(y + 1));
+      }
+    std::vector<GLfloat> table(64 * 4);
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = static_cast<GLfloat>((i * 37) % 64) / 63;
+    ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, table.data());
+    ctx.glEnable(GL_COLOR_TABLE);
+    const GLfloat m[16] = {0.5f, 0.25f, 0, 0.25f, 0.25f, 0.5f, 0.25f, 0.25f, 0, 0.25f, 0.5f, 0.25f, 0, 0, 0, 0.25f};
+    ctx.glMatrixMode(GL_COLOR);
+    ctx.glLoadMatrixf(m);
+    ctx.glMatrixMode(GL_MODELVIEW);
+    ctx.glHistogram(GL_HISTOGRAM, 8, GL_RGBA, GL_FALSE);
+    ctx.glEnable(GL_HISTOGRAM);
+    if (whole) {
+      const GLfloat one[4] = {1, 1, 1, 1};
+      ctx.glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 1, 1, GL_RGBA, GL_FLOAT, one);
+      ctx.glEnable(GL_CONVOLUTION_2D);
+    }
+    ctx.glPixelZoom(1.5f, -0.75f);
+    ctx.glRasterPos2i(5, 79);
+    ctx.glCopyPixels(0, 0, 30, 37, GL_COLOR);
+    EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    plane = ctx.framebuffer().color[0].rgba;
+    counts.assign(32, 0);
+    ctx.glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_RGBA, GL_UNSIGNED_INT, counts.data());
+    const Counters t = ctx.total_counters();
+    return std::array<std::uint64_t, 5>{t.fragments_generated, t.fragments_written, t.pixels_drawn, t.color_table_lookups,
+                                        t.pixels_color_matrix};
+  };
+  std::vector<std::uint16_t> banded_plane, whole_plane;
+  std::vector<GLuint> banded_counts, whole_counts;
+  const auto banded = run(false, banded_plane, banded_counts);
+  const auto whole = run(true, whole_plane, whole_counts);
+  EXPECT_EQ(banded_plane, whole_plane);
+  EXPECT_EQ(banded_counts, whole_counts);
+  EXPECT_EQ(banded, whole);
+  EXPECT_EQ(banded[2], 30u * 37u);
+}
