@@ -299,7 +299,7 @@ class ApitraceReplayer {
       case 's':
         if (a->kind == Kind::Null) return v;
         if (a->kind != Kind::String && a->kind != Kind::Blob) return bad("is not a string");
-        v.s = a->bytes;
+        v.set_str(a->bytes);
         return v;
       default:
         break;

@@ -29,7 +29,7 @@ T* output_scratch() {
 template <class T>
 T arg(const Value& v) {
   if constexpr (std::is_same_v<T, const char*>) {
-    return v.s.c_str();
+    return v.str().c_str();
   } else if constexpr (std::is_pointer_v<T> && std::is_const_v<std::remove_pointer_t<T>>) {
     return v.bytes ? reinterpret_cast<T>(v.bytes->data()) : nullptr;
   } else if constexpr (std::is_pointer_v<T>) {
@@ -521,7 +521,7 @@ std::string format_call(const Call& call) {
       }
       case 'f': out += format_float(v.d, true); break;
       case 'd': out += format_float(v.d, false); break;
-      case 's': out += quote(v.s); break;
+      case 's': out += quote(v.str()); break;
       case 'O': out += "{}"; break;
       default: out += format_array(v); break;
     }

@@ -21,7 +21,14 @@ class Context;
 struct Value {
   std::int64_t i = 0;
   double d = 0.0;
-  std::string s;
+  // A string argument, shared (16 bytes, not a std::string's 32: a compiled display list
+  // holds millions of Values).
+  std::shared_ptr<const std::string> text;
+  const std::string& str() const {
+    static const std::string empty;
+    return text ? *text : empty;
+  }
+  void set_str(std::string s) { text = std::make_shared<const std::string>(std::move(s)); }
   std::shared_ptr<const std::vector<std::byte>> bytes;
   GLenum elem_type = 0;  // GL_FLOAT, GL_DOUBLE, GL_INT, GL_UNSIGNED_INT, GL_UNSIGNED_BYTE, ...
   std::size_t count = 0;  // elements

@@ -585,7 +585,7 @@ Value to_value(const T& v) {
   } else if constexpr (std::is_integral_v<T>) {
     out.i = static_cast<std::int64_t>(v);
   } else if constexpr (std::is_same_v<T, const char*> || std::is_same_v<T, const GLchar*>) {
-    out.s = v ? v : "";
+    out.set_str(v ? v : "");
   }
   return out;
 }

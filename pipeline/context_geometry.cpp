@@ -756,6 +756,7 @@ void Context::array_element_impl(int i) {
 void Context::compile_array_element(int i, std::vector<Call>& out) const {
   auto add = [&](const char* name, Vec4 v, int n) {
     Call call{find_call(name), {}};
+    call.args.reserve(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
       Value x;
       x.d = v[k];

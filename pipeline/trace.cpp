@@ -624,7 +624,7 @@ class Replayer {
       }
       case 's':
         if (a.kind != Arg::String) fail(fmt::format("{}: argument {} must be a quoted string", info.name, index + 1));
-        v.s = a.text;
+        v.set_str(a.text);
         return v;
       case 'O':
         return v;
