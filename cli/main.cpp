@@ -461,7 +461,7 @@ int main(int argc, char** argv) {
   StudyCommand wic;
   what_if->add_option("--program", wic.base.program, "The program (passim program --list)")->required();
   what_if->add_option("--what-if", wic.what_if,
-                      "KEY=VALUE (bits, depth-bits, texture-bits, table-bits, accum-bits, map, depths, filter, bias); repeatable")
+                      "KEY=VALUE (bits, depth-bits, texture-bits, table-bits, accum-bits, map, depths, filter, bias; remove=color-tables, remove=convolution, remove=color-matrix); repeatable")
       ->required();
   what_if->add_option("--filter", wic.filter, "Its footprint NxN");
   what_if->add_option("--depths", wic.base.depths, "mdsm: depths per cell")->capture_default_str();

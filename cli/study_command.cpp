@@ -263,10 +263,17 @@ void apply_change(ProgramOptions& o, const std::string& change) {
     o.filter = parse_filter(value, "--what-if filter=");
   } else if (key == "bias") {  // in 8-bit steps of depth
     o.bias = number() * std::ldexp(1.0, (o.program == "hw-shadow" ? o.depth_bits : o.color_bits) - 8);
+  } else if (key == "remove") {  // a stage taken out of the pixel path, whatever the program enables
+    if (value == "color-tables") o.remove_color_tables = true;
+    else if (value == "convolution") o.remove_convolution = true;
+    else if (value == "color-matrix") o.remove_color_matrix = true;
+    else
+      throw std::invalid_argument(fmt::format(
+          "--what-if {}: unknown stage '{}' (color-tables, convolution, color-matrix)", change, value));
   } else {
     throw std::invalid_argument(fmt::format(
         "--what-if {}: unknown setting '{}' (bits, depth-bits, texture-bits, table-bits, accum-bits, map, depths, "
-        "filter, bias)", change, key));
+        "filter, bias, remove)", change, key));
   }
 }
 

@@ -309,6 +309,8 @@ class Context {
   // ---- passim: inspection, recording, counters ----
   const Framebuffer& framebuffer() const { return fb_; }
   const FramebufferConfig& config() const { return fb_.config; }
+  // The what-if study's stage removal (not GL state; see PixelTransferState::Removed).
+  void remove_stages(const PixelTransferState::Removed& removed) { transfer_.removed = removed; }
   const MachineProfile& profile() const { return profile_; }
   const std::vector<Pass>& passes() const { return passes_; }
   Counters total_counters() const;

@@ -710,6 +710,11 @@ ProgramSession::ProgramSession(const ProgramOptions& options, bool record) : sta
   if (!invalid.empty()) throw ProgramError(invalid);
 
   run.result.context = std::make_unique<Context>(s.framebuffer, s.machine());
+  if (o.remove_color_tables || o.remove_convolution || o.remove_color_matrix) {
+    // A trace cannot say this (it is not GL state): such a session records nothing.
+    if (record) throw ProgramError("a program with removed stages cannot be recorded as a trace");
+    run.result.context->remove_stages({o.remove_color_tables, o.remove_convolution, o.remove_color_matrix});
+  }
   if (record) {
     state_->trace << "# passim program " << o.program << " on scene " << run.scene.name << " (" << run.triangles
                   << " triangles)\n";

@@ -45,6 +45,8 @@ struct ProgramOptions {
   int texture_bits = 0;
   int table_bits = 0;
   std::string sampling = "jittered";  // reeves: random, gaussian or jittered (Reeves et al. (a), (b), (c))
+  // The what-if study's removed stages (whatever the program enables; not recorded in traces).
+  bool remove_color_tables = false, remove_convolution = false, remove_color_matrix = false;
 };
 
 struct ProgramInfo {

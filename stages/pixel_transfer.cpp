@@ -40,6 +40,7 @@ void color_table_lookup(const ColorTable& t, Rgba& c) {
 }
 
 const ConvolutionFilter* active_convolution(const PixelTransferState& s, int dims) {
+  if (s.removed.convolution) return nullptr;
   if (dims == 1) return s.convolution_1d ? &s.filter_1d : nullptr;
   if (s.convolution_2d) return &s.filter_2d;
   if (s.separable_2d) return &s.filter_separable;
@@ -58,10 +59,11 @@ TransferPlan plan_transfer(const PixelTransferState& s, const Mat4& m) {
   plan.matrix = &m;
   plan.scale_bias = s.scale != Vec4(1.0) || s.bias != Vec4(0.0);
   plan.map_color = s.map_color;
-  plan.color_matrix =
-      m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) || s.post_color_matrix_bias != Vec4(0.0);
+  plan.color_matrix = !s.removed.color_matrix && (m != Mat4(1.0) || s.post_color_matrix_scale != Vec4(1.0) ||
+                                                  s.post_color_matrix_bias != Vec4(0.0));
   for (std::size_t t = 0; t < 3; ++t)
-    plan.tables[t] = s.tables[t].enabled && !s.tables[t].entries.empty() ? &s.tables[t] : nullptr;
+    plan.tables[t] =
+        !s.removed.color_tables && s.tables[t].enabled && !s.tables[t].entries.empty() ? &s.tables[t] : nullptr;
   return plan;
 }
 

@@ -60,6 +60,12 @@ struct PixelTransferState {
   std::array<std::vector<double>, 4> color_maps{std::vector<double>{0.0}, std::vector<double>{0.0},
                                                 std::vector<double>{0.0}, std::vector<double>{0.0}};
   std::vector<std::vector<double>> other_maps = std::vector<std::vector<double>>(6, std::vector<double>{0.0});
+  // Not GL state: stages the what-if study removes (passim study what-if), whatever the
+  // program enables — the three colour tables, the convolution with its post scale and bias,
+  // the colour matrix with its post scale and bias.
+  struct Removed {
+    bool color_tables = false, convolution = false, color_matrix = false;
+  } removed;
 };
 
 // Which convolution an operation uses (§3.6.5): CONVOLUTION_1D for 1D textures; for 2D images
