@@ -546,6 +546,7 @@ class Context {
 
   // primitive assembly
   bool in_begin_ = false;
+  bool drawing_arrays_ = false;  // inside glDrawArrays / glDrawElements (the profile's quad split)
   GLenum begin_mode_ = GL_POINTS;
   std::vector<ProcessedVertex> prim_vertices_;
   std::vector<std::array<Material, 2>> vertex_materials_;  // materials in force for this Begin/End's vertices

@@ -444,8 +444,16 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
     case GL_QUADS: {
       buf.push_back(v);
       if (buf.size() == 4) {
-        const ProcessedVertex* p[4] = {&buf[0], &buf[1], &buf[2], &buf[3]};
-        draw_polygon(p, 4, buf[3]);
+        if (profile_.arithmetic.immediate_quads_as_triangle_pairs && !drawing_arrays_) {
+          // The profile's decomposition (profile.hpp); the provoking vertex stays v3.
+          const ProcessedVertex* first[3] = {&buf[0], &buf[1], &buf[3]};
+          const ProcessedVertex* second[3] = {&buf[1], &buf[2], &buf[3]};
+          draw_polygon(first, 3, buf[3]);
+          draw_polygon(second, 3, buf[3]);
+        } else {
+          const ProcessedVertex* p[4] = {&buf[0], &buf[1], &buf[2], &buf[3]};
+          draw_polygon(p, 4, buf[3]);
+        }
         buf.clear();
       }
       return;
@@ -806,12 +814,24 @@ void Context::glArrayElement(GLint i) {
   array_element_impl(i);
 }
 
+namespace {
+// Marks a glDrawArrays / glDrawElements for its duration, also when a trace error leaves it.
+struct ArraysScope {
+  bool& flag;
+  explicit ArraysScope(bool& f) : flag(f) { flag = true; }
+  ~ArraysScope() { flag = false; }
+  ArraysScope(const ArraysScope&) = delete;
+  ArraysScope& operator=(const ArraysScope&) = delete;
+};
+}  // namespace
+
 void Context::glDrawArrays(GLenum mode, GLint first, GLsizei count) {
   PASSIM_ENTRY(mode, first, count)
   if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
   if (count < 0 || first < 0) return set_error(GL_INVALID_VALUE);
   if (count == 0) return;
   check_array_bounds(first + count - 1);
+  const ArraysScope arrays(drawing_arrays_);
   glBegin(mode);
   for (GLint k = 0; k < count; ++k) array_element_impl(first + k);
   glEnd();
@@ -835,6 +855,7 @@ void Context::glDrawElements(GLenum mode, GLsizei count, GLenum type, const void
     max_index = std::max(max_index, static_cast<int>(v));
   }
   check_array_bounds(max_index);
+  const ArraysScope arrays(drawing_arrays_);
   glBegin(mode);
   for (int i : idx) array_element_impl(i);
   glEnd();

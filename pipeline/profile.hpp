@@ -38,6 +38,14 @@ struct ArithmeticOptions {
   // A4: round the lit (or current) vertex colour to the fragment width before it is
   // interpolated. Off: the clamped real colour is interpolated (as Mesa does).
   bool quantise_vertex_colors = true;
+  // §3.5.1 leaves a polygon's decomposition into triangles open, and with it how attributes
+  // are interpolated across a quad whose attributes are not affine (four different colours,
+  // projective texture coordinates). Off: a quad is clipped as a polygon and drawn as a fan
+  // from its first vertex. On: a quad (v0, v1, v2, v3) given between glBegin and glEnd is
+  // drawn as triangles (v0, v1, v3) and (v1, v2, v3), each clipped on its own — what Mesa 22
+  // does in immediate mode, while its glDrawArrays/glDrawElements quads are fans
+  // (docs/arithmetic.md, "Against Mesa").
+  bool immediate_quads_as_triangle_pairs = false;
 };
 
 // Rates of the cost model (docs/cost-model.md), per second; 0 = the stage is not timed.

@@ -305,7 +305,7 @@ Stats compare(F scene, const char* name) {
     EXPECT_LE(s.max_diff, 1) << #fn;                                                           \
   }
 
-SCENE_TEST(lit_geometry, false)
+SCENE_TEST(lit_geometry, true)
 SCENE_TEST(texgen_ramp, true)
 SCENE_TEST(projective_reverse_subtract, false)
 SCENE_TEST(masks_and_equations, false)

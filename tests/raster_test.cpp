@@ -328,3 +328,40 @@ TEST(Raster, SnappingHasAGuardBand) {
   EXPECT_EQ(snap_coordinate(-2.5e30, 12), -(std::int64_t{1} << 30));
   EXPECT_EQ(snap_coordinate(1e300, 4), std::int64_t{1} << 22);
 }
+
+TEST(QuadDecomposition, ProfileChoosesTheDiagonal) {
+  // A 2x2 window filled by one quad v0 (0,0), v1 (2,0), v2 (2,2), v3 (0,2), red 1 at v0 and 0
+  // elsewhere (w = 1: screen-linear). By hand, red at the pixel centres:
+  //  fan (v0,v1,v2), (v0,v2,v3) — diagonal v0-v2: (0.5,0.5) 0.75, (1.5,0.5) 0.25, (0.5,1.5) 0.25,
+  //    (1.5,1.5) 0.25 -> 191, 64, 64, 64;
+  //  pairs (v0,v1,v3), (v1,v2,v3) — diagonal v1-v3: 1 − x/2 − y/2 inside the first, 0 beyond:
+  //    (0.5,0.5) 0.5 -> 128 (127.5 ties up), the other three 0.
+  // The mesa-llvmpipe profile splits immediate-mode quads into pairs and keeps the fan for
+  // glDrawArrays (as Mesa 22 does); the default profile always fans.
+  const std::array<std::uint32_t, 4> fan{191, 64, 64, 64}, pairs{128, 0, 0, 0};
+  auto draw = [](const char* profile, bool arrays) {
+    Context ctx(test::small_config(2, 2), *find_profile(profile));
+    test::window_projection(ctx);
+    const GLfloat xy[8] = {0, 0, 2, 0, 2, 2, 0, 2};
+    const GLfloat rgb[12] = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    if (arrays) {
+      ctx.glEnableClientState(GL_VERTEX_ARRAY);
+      ctx.glEnableClientState(GL_COLOR_ARRAY);
+      ctx.glVertexPointer(2, GL_FLOAT, 0, xy);
+      ctx.glColorPointer(3, GL_FLOAT, 0, rgb);
+      ctx.glDrawArrays(GL_QUADS, 0, 4);
+    } else {
+      ctx.glBegin(GL_QUADS);
+      for (int k = 0; k < 4; ++k) {
+        ctx.glColor3f(rgb[3 * k], rgb[3 * k + 1], rgb[3 * k + 2]);
+        ctx.glVertex2f(xy[2 * k], xy[2 * k + 1]);
+      }
+      ctx.glEnd();
+    }
+    return std::array<std::uint32_t, 4>{pixel(ctx, 0, 0)[0], pixel(ctx, 1, 0)[0], pixel(ctx, 0, 1)[0], pixel(ctx, 1, 1)[0]};
+  };
+  EXPECT_EQ(draw("ideal", false), fan);
+  EXPECT_EQ(draw("ideal", true), fan);
+  EXPECT_EQ(draw("mesa-llvmpipe", false), pairs);
+  EXPECT_EQ(draw("mesa-llvmpipe", true), fan);
+}
