@@ -32,7 +32,8 @@ Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
   textures_.gen[1].object_plane = textures_.gen[1].eye_plane = Vec4(0.0, 1.0, 0.0, 0.0);
   transfer_.minmax.reset();
   update_fragment_bits();
-  scratch_->fragment_ops.configure(FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_});
+  scratch_->fragment_ops.configure(
+      FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_, &profile_.arithmetic});
 }
 
 Context::~Context() = default;

@@ -109,10 +109,11 @@ const std::vector<MachineProfile>& machine_profiles() {
       m.name = "mesa-llvmpipe";
       m.description = "Debian 12 Mesa llvmpipe's open choices, for the outside check: 8 sub-pixel bits, "
                       "vertex colours interpolated unrounded, immediate-mode quads split into triangles (0,1,3), "
-                      "(1,2,3).";
+                      "(1,2,3), blend products rounded one by one.";
       m.limits.subpixel_bits = 8;
       m.arithmetic.quantise_vertex_colors = false;
       m.arithmetic.immediate_quads_as_triangle_pairs = true;
+      m.arithmetic.blend_products_rounded = true;
       m.limits.max_convolution_width = m.limits.max_convolution_height = 9;  // Mesa 6.x; llvmpipe has none
       m.sources = "measured against OSMesa 22.3.6 (tests/osmesa_check.cpp, docs/arithmetic.md)";
       p.push_back(m);

@@ -46,6 +46,10 @@ struct ArithmeticOptions {
   // does in immediate mode, while its glDrawArrays/glDrawElements quads are fans
   // (docs/arithmetic.md, "Against Mesa").
   bool immediate_quads_as_triangle_pairs = false;
+  // §4.1.6 does not say how exactly a blend is computed. Off: s·S + d·D in reals, rounded once
+  // (A1). On: each product rounded to the colour width first, then combined — Mesa 22's 8-bit
+  // blender (docs/arithmetic.md, "Against Mesa").
+  bool blend_products_rounded = false;
 };
 
 // Rates of the cost model (docs/cost-model.md), per second; 0 = the stage is not timed.

@@ -20,13 +20,14 @@ bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored) {
   }
 }
 
-double blend_component(GLenum equation, double s, double d, double sf, double df) {
+double blend_component(GLenum equation, double s, double d, double sf, double df, int product_bits) {
+  auto product = [product_bits](double c, double f) { return product_bits > 0 ? quantise(c * f, product_bits) : c * f; };
   switch (equation) {
-    case GL_FUNC_SUBTRACT: return s * sf - d * df;
-    case GL_FUNC_REVERSE_SUBTRACT: return d * df - s * sf;
+    case GL_FUNC_SUBTRACT: return product(s, sf) - product(d, df);
+    case GL_FUNC_REVERSE_SUBTRACT: return product(d, df) - product(s, sf);
     case GL_MIN: return std::min(s, d);  // factors ignored (ARB_imaging)
     case GL_MAX: return std::max(s, d);
-    default: return s * sf + d * df;  // GL_FUNC_ADD
+    default: return product(s, sf) + product(d, df);  // GL_FUNC_ADD
   }
 }
 
@@ -370,7 +371,9 @@ void FragmentOps::process(FragmentSpan& span) {
         for (int k = 0; k < 4; ++k) {
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
           const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
-          out[k] = float_to_fixed(blend_component(ops.blend_equation, src[k], dcol[k], sf, df), cfg.color_bits[k]);
+          const int product_bits = in_.arithmetic && in_.arithmetic->blend_products_rounded ? cfg.color_bits[k] : 0;
+          out[k] = float_to_fixed(blend_component(ops.blend_equation, src[k], dcol[k], sf, df, product_bits),
+                                  cfg.color_bits[k]);
         }
         ++counters.blend_operations;
         counters.color_bits_read += static_cast<std::uint64_t>(total_bits);

@@ -7,6 +7,7 @@
 
 #include "pipeline/counters.hpp"
 #include "pipeline/framebuffer.hpp"
+#include "pipeline/profile.hpp"
 #include "pipeline/state.hpp"
 #include "stages/fragment_span.hpp"
 
@@ -18,6 +19,7 @@ struct FragmentOpsInput {
   const FramebufferControlState* control = nullptr;
   const std::vector<ColorBufferId>* draw_buffers = nullptr;
   const std::array<int, 4>* fragment_bits = nullptr;  // widths of the span's colour codes
+  const ArithmeticOptions* arithmetic = nullptr;      // the profile's open choices
 };
 
 class FragmentOps final : public FragmentSink {
@@ -45,7 +47,11 @@ class FragmentOps final : public FragmentSink {
 // The comparison functions of AlphaFunc, StencilFunc and DepthFunc (NEVER ... ALWAYS).
 bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored);
 // §4.1.6 blend of one component: source, destination, factors and constant in [0, 1].
-double blend_component(GLenum equation, double src, double dst, double src_factor, double dst_factor);
+// `product_bits` > 0: each product (src·src_factor, dst·dst_factor) is first rounded to a code
+// of that width (ArithmeticOptions::blend_products_rounded); 0: exact products, one rounding
+// of the result (the default model).
+double blend_component(GLenum equation, double src, double dst, double src_factor, double dst_factor,
+                       int product_bits = 0);
 // §4.1.7 logic operation on n-bit codes.
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask);
 

@@ -252,3 +252,22 @@ TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
     }
   }
 }
+
+TEST(Blend, ProductsRoundedOneByOneInTheMesaProfile) {
+  // ADD with both factors 1/2 (alpha 128/255 would not be exact; use the constant alpha):
+  // codes 101 and 51 at 8 bits. Exact: (101 + 51)/2 = 76 -> 76. Products rounded first:
+  // 50.5 -> 51 and 25.5 -> 26 (ties up), 51 + 26 = 77.
+  EXPECT_DOUBLE_EQ(blend_component(GL_FUNC_ADD, 101 / 255.0, 51 / 255.0, 0.5, 0.5) * 255.0, 76.0);
+  EXPECT_DOUBLE_EQ(blend_component(GL_FUNC_ADD, 101 / 255.0, 51 / 255.0, 0.5, 0.5, 8) * 255.0, 77.0);
+  for (const char* profile : {"ideal", "mesa-llvmpipe"}) {
+    Context ctx(test::small_config(1, 1), *find_profile(profile));
+    ctx.glClearColor(51 / 255.0f, 0, 0, 0);
+    ctx.glClear(GL_COLOR_BUFFER_BIT);
+    ctx.glEnable(GL_BLEND);
+    ctx.glBlendColor(0, 0, 0, 0.5f);
+    ctx.glBlendFunc(GL_CONSTANT_ALPHA, GL_CONSTANT_ALPHA);
+    ctx.glColor4ub(101, 0, 0, 255);
+    ctx.glRectf(-1, -1, 1, 1);
+    EXPECT_EQ(test::pixel(ctx, 0, 0)[0], std::string(profile) == "ideal" ? 76u : 77u) << profile;
+  }
+}

@@ -308,4 +308,4 @@ Stats compare(F scene, const char* name) {
 SCENE_TEST(lit_geometry, true)
 SCENE_TEST(texgen_ramp, true)
 SCENE_TEST(projective_reverse_subtract, false)
-SCENE_TEST(masks_and_equations, false)
+SCENE_TEST(masks_and_equations, true)
