@@ -10,6 +10,9 @@ namespace {
 
 bool is_mipmap_filter(GLenum f) { return f != GL_NEAREST && f != GL_LINEAR; }
 
+// The border rows of a level: a 1D texture (one row) has its border at the row's ends only.
+int row_border(const TextureLevel& level) { return level.height == 1 ? 0 : level.border; }
+
 // Base-format components of the level's texel (i, j), or the border colour when (i, j) lies
 // beyond the specified border (§3.8.5); the texel is read as k / (2^bits − 1).
 struct Fetch {
@@ -21,9 +24,9 @@ struct Fetch {
 
   // The raw components R, G, B, A (L in r, I in r, D in r) as reals.
   std::array<double, 4> texel(int i, int j) const {
-    const int b = level.border;
-    const int w = level.width - 2 * b, h = level.height - 2 * b;
-    if (i < -b || i >= w + b || j < -b || j >= h + b) {
+    const int b = level.border, bj = row_border(level);
+    const int w = level.width - 2 * b, h = level.height - 2 * bj;
+    if (i < -b || i >= w + b || j < -bj || j >= h + bj) {
       const Vec4& c = tex.border_color;
       const InternalFormat& f = level.format;
       // Table 3.15: the border colour is taken as an RGBA colour and mapped like a texel.
@@ -35,7 +38,7 @@ struct Fetch {
     }
     ++counters.texels_fetched;
     counters.texture_bits_read += static_cast<std::uint64_t>(bits);
-    const std::size_t p = 4 * (static_cast<std::size_t>(j + b) * static_cast<std::size_t>(level.width) +
+    const std::size_t p = 4 * (static_cast<std::size_t>(j + bj) * static_cast<std::size_t>(level.width) +
                                static_cast<std::size_t>(i + b));
     return {values[p], values[p + 1], values[p + 2], values[p + 3]};
   }
@@ -74,6 +77,14 @@ double compare_depth(const TextureObject& tex, const TextureLevel& level, double
     pass = tex.compare_func == GL_GEQUAL ? rr >= d : rr <= d;
   }
   return pass ? 1.0 : tex.shadow_ambient;
+}
+
+// eq. 3.17: (1−α)τ0 + ατ1; eq. 3.18: (1−α)(1−β)τ00 + α(1−β)τ10 + (1−α)βτ01 + αβτ11, with A11's exact
+// real weights — one expression for the general and the fast path, so the same bits.
+inline double lerp_1d(double alpha, double a, double b) { return (1.0 - alpha) * a + alpha * b; }
+inline double lerp_2d(double alpha, double beta, double t00, double t10, double t01, double t11) {
+  return (1.0 - alpha) * (1.0 - beta) * t00 + alpha * (1.0 - beta) * t10 + (1.0 - alpha) * beta * t01 +
+         alpha * beta * t11;
 }
 
 bool compares(const TextureObject& tex, const TextureLevel& level) {
@@ -121,13 +132,10 @@ TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int
     const double alpha = uu - floor_exact(uu), beta = dims == 2 ? vv - floor_exact(vv) : 0.0;
     if (dims == 1) {
       const auto a = value(i0, 0), b = value(i0 + 1, 0);
-      for (int k = 0; k < 4; ++k) out[k] = (1.0 - alpha) * a[k] + alpha * b[k];
+      for (int k = 0; k < 4; ++k) out[k] = lerp_1d(alpha, a[k], b[k]);
     } else {
-      // eq. 3.18: (1−α)(1−β)τ00 + α(1−β)τ10 + (1−α)βτ01 + αβτ11, A11: exact real weights.
       const auto t00 = value(i0, j0), t10 = value(i0 + 1, j0), t01 = value(i0, j0 + 1), t11 = value(i0 + 1, j0 + 1);
-      for (int k = 0; k < 4; ++k)
-        out[k] = (1.0 - alpha) * (1.0 - beta) * t00[k] + alpha * (1.0 - beta) * t10[k] + (1.0 - alpha) * beta * t01[k] +
-                 alpha * beta * t11[k];
+      for (int k = 0; k < 4; ++k) out[k] = lerp_2d(alpha, beta, t00[k], t10[k], t01[k], t11[k]);
     }
   }
   TexelValue tv{out[0], out[1], out[2], out[3]};
@@ -167,14 +175,62 @@ bool texture_needs_lod(const TextureObject& tex) {
   return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
 }
 
+LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims) {
+  LinearLevel l;
+  l.values = level.values().data();
+  l.dims = dims;
+  l.width = level.width;
+  l.border = level.border;
+  l.row_border = row_border(level);
+  l.w = level.width - 2 * level.border;
+  l.h = dims == 2 ? level.height - 2 * level.border : 1;
+  l.bits_per_texel = level.bits_per_texel();
+  l.wrap_s = tex.wrap_s;
+  l.wrap_t = tex.wrap_t;
+  return l;
+}
+
+bool linear_stored_footprint(const LinearLevel& l, double s, double t, TexelValue& out, Counters& counters) {
+  if (!std::isfinite(s) || !std::isfinite(t)) return false;
+  const int b = l.border, w = l.w, h = l.h, dims = l.dims;
+  // As filter_level: wrap, scale, the lower texel and the fractions.
+  const double uu = wrap_coordinate(s, l.wrap_s, w) * w - 0.5;
+  const double vv = dims == 2 ? wrap_coordinate(t, l.wrap_t, h) * h - 0.5 : 0.0;
+  const double fu = floor_exact(uu), fv = dims == 2 ? floor_exact(vv) : 0.0;
+  const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
+  const double alpha = uu - fu, beta = vv - fv;
+  const int i[2] = {wrap_index(i0, l.wrap_s, w), wrap_index(i0 + 1, l.wrap_s, w)};
+  const int j[2] = {dims == 2 ? wrap_index(j0, l.wrap_t, h) : 0, dims == 2 ? wrap_index(j0 + 1, l.wrap_t, h) : 0};
+  // Only stored texels (the border colour takes the general path).
+  if (i[0] < -b || i[1] >= w + b || i[1] < -b || i[0] >= w + b) return false;
+  if (dims == 2 && (j[0] < -b || j[1] >= h + b || j[1] < -b || j[0] >= h + b)) return false;
+  auto at = [&](int x, int y) {
+    return l.values + 4 * (static_cast<std::size_t>(y + l.row_border) * static_cast<std::size_t>(l.width) +
+                           static_cast<std::size_t>(x + b));
+  };
+  double r[4];
+  if (dims == 1) {
+    const double *a = at(i[0], 0), *c = at(i[1], 0);
+    for (int k = 0; k < 4; ++k) r[k] = lerp_1d(alpha, a[k], c[k]);
+  } else {
+    const double *t00 = at(i[0], j[0]), *t10 = at(i[1], j[0]), *t01 = at(i[0], j[1]), *t11 = at(i[1], j[1]);
+    for (int k = 0; k < 4; ++k) r[k] = lerp_2d(alpha, beta, t00[k], t10[k], t01[k], t11[k]);
+  }
+  const std::uint64_t texels = dims == 2 ? 4 : 2;
+  counters.texels_fetched += texels;
+  counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
+  out = {r[0], r[1], r[2], r[3]};
+  return true;
+}
+
 std::int64_t nearest_texel_index(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t) {
   if (!std::isfinite(s)) s = 0.0;  // as sample_texture
   if (!std::isfinite(t)) t = 0.0;
   int i = 0, j = 0;
   nearest_ij(tex, level, dims, s, t, i, j);
-  const int b = level.border, w = level.width - 2 * b, h = level.height - 2 * b;
-  if (i < -b || i >= w + b || j < -b || j >= h + b) return -1;
-  return static_cast<std::int64_t>(j + b) * level.width + (i + b);
+  const int b = level.border, bj = row_border(level), w = level.width - 2 * b, h = level.height - 2 * bj;
+  if (i < -b || i >= w + b || j < -bj || j >= h + bj) return -1;
+  return static_cast<std::int64_t>(j + bj) * level.width + (i + b);
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,

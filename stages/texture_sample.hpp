@@ -28,6 +28,18 @@ std::int64_t nearest_texel_index(const TextureObject& tex, const TextureLevel& l
 
 // Samples the texture at (s, t) (already divided by q) with level-of-detail λ; `r` is the
 // fragment's r/q for depth comparison. `dims` is 1 or 2.
+// The fast path's LINEAR (TextureStage): the level filtered at (s, t) with the arithmetic of
+// sample_texture, when the coordinates are finite and the footprint is stored texels (no
+// border colour); counts the texels read. False: nothing counted, use sample_texture.
+// LinearLevel holds what is the same for every fragment of a span.
+struct LinearLevel {
+  const double* values = nullptr;  // TextureLevel::values()
+  int dims = 1, width = 0, border = 0, row_border = 0, w = 0, h = 1, bits_per_texel = 0;
+  GLenum wrap_s = 0, wrap_t = 0;
+};
+LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims);
+bool linear_stored_footprint(const LinearLevel& level, double s, double t, TexelValue& out, Counters& counters);
+
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,
                           int last_level, Counters& counters);
 

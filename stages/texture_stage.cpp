@@ -51,7 +51,7 @@ void TextureStage::process(FragmentSpan& span) {
     next_->process(span);
     return;
   }
-  for (int i = 0; i < span.count; ++i) {
+  auto general = [&](int i) {
     const TexelValue tv =
         sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);
     std::uint16_t* c = span.rgba + 4 * i;
@@ -59,7 +59,40 @@ void TextureStage::process(FragmentSpan& span) {
     const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
     // A4: the textured colour is rounded to the fragment colour width.
     for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
+  };
+  // Fast path: LINEAR for both filters (so λ chooses nothing), no comparison, REPLACE. The
+  // filter is sample_texture's (linear_stored_footprint shares its expressions); REPLACE
+  // takes the texel's components as NEAREST's fast path does; fragments whose footprint
+  // reaches the border colour, or whose coordinates are not finite, take the general path.
+  const bool fast_linear = !general_path_only && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
+                           setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
+  if (fast_linear) {
+    const bool color = env_base != GL_ALPHA;
+    const bool alpha = env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA ||
+                       env_base == GL_INTENSITY;
+    std::uint64_t filtered = 0;
+    const LinearLevel level = linear_level(tex, base, setup_.dims);
+    for (int i = 0; i < span.count; ++i) {
+      TexelValue tv;
+      if (!linear_stored_footprint(level, span.s[i], span.t[i], tv, counters)) {
+        general(i);
+        continue;
+      }
+      ++filtered;
+      std::uint16_t* c = span.rgba + 4 * i;
+      if (color) {
+        c[0] = static_cast<std::uint16_t>(float_to_fixed(tv.r, bits[0]));
+        c[1] = static_cast<std::uint16_t>(float_to_fixed(tv.g, bits[1]));
+        c[2] = static_cast<std::uint16_t>(float_to_fixed(tv.b, bits[2]));
+      }
+      if (alpha) c[3] = static_cast<std::uint16_t>(float_to_fixed(tv.a, bits[3]));
+    }
+    fast_path_fragments.fetch_add(filtered, std::memory_order_relaxed);
+    counters.texture_lookups += filtered;
+    next_->process(span);
+    return;
   }
+  for (int i = 0; i < span.count; ++i) general(i);
   next_->process(span);
 }
 

@@ -393,13 +393,13 @@ TEST(Fog, LinearExpExp2) {
 
 #include "stages/texture_stage.hpp"
 
-TEST(TextureFastPath, NearestReplaceMatchesTheGeneralPath) {
+TEST(TextureFastPath, NearestAndLinearReplaceMatchTheGeneralPath) {
   // Random textured triangles (projective coordinates, every wrap mode, borders, 1D and 2D,
   // every base format, widths 4-16, fragment widths 5/8/12): planes and counters must be
-  // identical with and without the NEAREST/REPLACE fast path.
+  // identical with and without the NEAREST/REPLACE and LINEAR/REPLACE fast paths.
   const GLenum formats[] = {GL_ALPHA8, GL_LUMINANCE12, GL_LUMINANCE4_ALPHA4, GL_INTENSITY16, GL_RGB5, GL_RGBA12, GL_RGB10_A2};
   const GLenum wraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
-  auto draw = [&](Context& ctx, unsigned seed) {
+  auto draw = [&](Context& ctx, unsigned seed, GLenum filter) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(-4.0f, 36.0f), st(-1.5f, 2.5f), q(0.3f, 2.0f), c(0.0f, 1.0f);
     test::window_projection(ctx);
@@ -415,8 +415,8 @@ TEST(TextureFastPath, NearestReplaceMatchesTheGeneralPath) {
     else
       ctx.glTexImage2D(target, 0, static_cast<GLint>(format), w + 2 * border, h + 2 * border, border, GL_RGBA, GL_FLOAT,
                        texels.data());
-    ctx.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    ctx.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    ctx.glTexParameteri(target, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+    ctx.glTexParameteri(target, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(filter));
     ctx.glTexParameteri(target, GL_TEXTURE_WRAP_S, static_cast<GLint>(wraps[rng() % 3]));
     ctx.glTexParameteri(target, GL_TEXTURE_WRAP_T, static_cast<GLint>(wraps[rng() % 3]));
     const GLfloat border_color[4] = {c(rng), c(rng), c(rng), c(rng)};
@@ -434,20 +434,48 @@ TEST(TextureFastPath, NearestReplaceMatchesTheGeneralPath) {
       ctx.glEnd();
     }
   };
-  TextureStage::fast_path_fragments = 0;
-  for (int bits : {5, 8, 12}) {
-    for (unsigned seed = 1; seed <= 40; ++seed) {
-      Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
-      draw(fast, seed);
-      TextureStage::general_path_only = true;
-      draw(general, seed);
-      TextureStage::general_path_only = false;
-      ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba) << bits << " " << seed;
-      ASSERT_TRUE(fast.total_counters() == general.total_counters()) << bits << " " << seed;
-      ASSERT_EQ(fast.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  for (GLenum filter : {GL_NEAREST, GL_LINEAR}) {
+    TextureStage::fast_path_fragments = 0;
+    for (int bits : {5, 8, 12}) {
+      for (unsigned seed = 1; seed <= 40; ++seed) {
+        Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
+        draw(fast, seed, filter);
+        TextureStage::general_path_only = true;
+        draw(general, seed, filter);
+        TextureStage::general_path_only = false;
+        ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba)
+            << enum_name(filter) << " " << bits << " " << seed;
+        ASSERT_TRUE(fast.total_counters() == general.total_counters()) << enum_name(filter) << " " << bits << " " << seed;
+        ASSERT_EQ(fast.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+      }
     }
+    EXPECT_GT(TextureStage::fast_path_fragments, 10000u) << enum_name(filter);  // the fast path did run
   }
-  EXPECT_GT(TextureStage::fast_path_fragments, 10000u);  // the fast path did run
+}
+
+TEST(TextureBorders, OneDimensionalTextureWithABorderSamplesItsTexels) {
+  // A 1D LUMINANCE8 texture of 4 texels with a border: stored 10 | 20 30 40 50 | 60, border
+  // colour white. NEAREST at s = 0.6: texel ⌊0.6·4⌋ = 2 -> 40. LINEAR at s = 0 under CLAMP:
+  // u − ½ = −0.5, so ½ of the left border texel and ½ of texel 0: (10 + 20)/2 = 15.
+  // (Until this test the border made every lookup return the border colour.)
+  for (GLenum filter : {GL_NEAREST, GL_LINEAR}) {
+    Context ctx(test::small_config(1, 1));
+    test::window_projection(ctx);
+    const GLubyte texels[6] = {10, 20, 30, 40, 50, 60};
+    ctx.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    ctx.glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, 6, 1, GL_LUMINANCE, GL_UNSIGNED_BYTE, texels);
+    ctx.glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+    ctx.glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(filter));
+    ctx.glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP);
+    const GLfloat white[4] = {1, 1, 1, 1};
+    ctx.glTexParameterfv(GL_TEXTURE_1D, GL_TEXTURE_BORDER_COLOR, white);
+    ctx.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    ctx.glEnable(GL_TEXTURE_1D);
+    ctx.glTexCoord1f(filter == GL_NEAREST ? 0.6f : 0.0f);
+    ctx.glRectf(0, 0, 1, 1);
+    EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    EXPECT_EQ(pixel(ctx, 0, 0)[0], filter == GL_NEAREST ? 40u : 15u) << enum_name(filter);
+  }
 }
 
 // Found by fuzzing: an enum given as a negative float (glTexParameterf(..., −9728)) was an
