@@ -531,14 +531,7 @@ void Context::glAccum(GLenum op, GLfloat value) {
     return set_error(GL_INVALID_ENUM);
   if (fb_.config.accum_bits == 0) return set_error(GL_INVALID_OPERATION);
   // §4.2.4: the whole window, or the scissor box when the scissor test is on.
-  AccumRegion region{0, 0, fb_.width(), fb_.height()};
-  if (fragment_.scissor_enabled) {
-    region.x0 = std::clamp(fragment_.scissor_x, 0, fb_.width());
-    region.y0 = std::clamp(fragment_.scissor_y, 0, fb_.height());
-    region.x1 = std::clamp(fragment_.scissor_x + fragment_.scissor_width, region.x0, fb_.width());
-    region.y1 = std::clamp(fragment_.scissor_y + fragment_.scissor_height, region.y0, fb_.height());
-  }
-  accumulate(op, value, region, *color_buffer(pixel_.read_buffer), draw_buffer_ids_, fb_control_.color_mask, fb_,
+  accumulate(op, value, scissored_window(fragment_, fb_.width(), fb_.height()), *color_buffer(pixel_.read_buffer), draw_buffer_ids_, fb_control_.color_mask, fb_,
              counters());
 }
 

@@ -336,13 +336,7 @@ void Context::draw_stencil_rectangle(int width, int height, const std::vector<do
   const int bits = fb_.config.stencil_bits;
   const auto mask = static_cast<std::uint8_t>(fb_control_.stencil_writemask & max_code(bits));
   // §4.3.1: pixel ownership (the window) and the scissor test only; no fragment is produced.
-  int x_lo = 0, x_hi = fb_.width(), y_lo = 0, y_hi = fb_.height();
-  if (fragment_.scissor_enabled) {
-    x_lo = std::max(x_lo, fragment_.scissor_x);
-    y_lo = std::max(y_lo, fragment_.scissor_y);
-    x_hi = static_cast<int>(std::min<std::int64_t>(x_hi, std::int64_t{fragment_.scissor_x} + fragment_.scissor_width));
-    y_hi = static_cast<int>(std::min<std::int64_t>(y_hi, std::int64_t{fragment_.scissor_y} + fragment_.scissor_height));
-  }
+  const auto [x_lo, y_lo, x_hi, y_hi] = scissored_window(fragment_, fb_.width(), fb_.height());
   std::uint64_t written = 0;
   for (int j = 0; j < height; ++j) {
     const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];

@@ -111,6 +111,25 @@ struct FragmentOpsState {
   GLenum logic_op = GL_COPY;
 };
 
+// A rectangle of window pixels, [x0, x1) x [y0, y1).
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// The pixels a clear, an accumulation or a stencil rectangle may touch: the window, cut by the
+// scissor box when the scissor test is on (§4.1.2, §4.2.3, §4.2.4). In 64 bits: the box's
+// x + width may pass INT_MAX.
+inline PixelBox scissored_window(const FragmentOpsState& ops, int width, int height) {
+  if (!ops.scissor_enabled) return {0, 0, width, height};
+  auto clamp = [](std::int64_t v, std::int64_t lo, std::int64_t hi) { return static_cast<int>(v < lo ? lo : v > hi ? hi : v); };
+  PixelBox b;
+  b.x0 = clamp(ops.scissor_x, 0, width);
+  b.y0 = clamp(ops.scissor_y, 0, height);
+  b.x1 = clamp(std::int64_t{ops.scissor_x} + ops.scissor_width, b.x0, width);
+  b.y1 = clamp(std::int64_t{ops.scissor_y} + ops.scissor_height, b.y0, height);
+  return b;
+}
+
 // Table 6.16 (framebuffer control).
 struct FramebufferControlState {
   GLenum draw_buffer = GL_BACK;

@@ -3,10 +3,7 @@
 #include "pipeline/fixed_point.hpp"
 #include "stages/clear.hpp"
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define PASSIM_HAVE_AVX2_KERNEL 1
-#endif
+#include "stages/avx2.hpp"
 
 namespace passim {
 
@@ -42,11 +39,6 @@ void return_row_scalar(const AccumRowOp& s, const std::int32_t* acc, std::uint16
 
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
 namespace {
-
-// clamp_nan_low with MAXPD/MINPD: when x is NaN, MAXPD returns its second operand (lo).
-__attribute__((target("avx2"))) inline __m256d clamp_nan_low_4(__m256d x, __m256d lo, __m256d hi) {
-  return _mm256_min_pd(_mm256_max_pd(x, lo), hi);
-}
 
 template <GLenum Op>
 __attribute__((target("avx2"))) void accumulate_row_avx2_op(const AccumRowOp& s, std::int32_t* acc,
@@ -101,7 +93,6 @@ __attribute__((target("avx2"))) void return_row_avx2(const AccumRowOp& s, const 
   }
 }
 
-bool accumulate_has_avx2() { return __builtin_cpu_supports("avx2"); }
 #else
 void accumulate_row_avx2(const AccumRowOp& s, std::int32_t* acc, const std::uint16_t* read, int n) {
   accumulate_row_scalar(s, acc, read, n);
@@ -109,12 +100,11 @@ void accumulate_row_avx2(const AccumRowOp& s, std::int32_t* acc, const std::uint
 void return_row_avx2(const AccumRowOp& s, const std::int32_t* acc, std::uint16_t* out, int n) {
   return_row_scalar(s, acc, out, n);
 }
-bool accumulate_has_avx2() { return false; }
 #endif
 
 // ---------------------------------------------------------------- the operation
 
-void accumulate(GLenum op, double value, const AccumRegion& r, const ColorPlane& read,
+void accumulate(GLenum op, double value, const PixelBox& r, const ColorPlane& read,
                 const std::vector<ColorBufferId>& draw, const std::array<bool, 4>& mask, Framebuffer& fb,
                 Counters& counters) {
   const FramebufferConfig& cfg = fb.config;
@@ -139,7 +129,7 @@ void accumulate(GLenum op, double value, const AccumRegion& r, const ColorPlane&
       row_op.code_mask[k] = bits ? max_code(bits) : 0;
     }
   for (int k = 0; k < 4; ++k) row_op.color_max[k] = static_cast<double>(max_code(cfg.color_bits[k]));
-  const bool wide = accumulate_has_avx2();
+  const bool wide = cpu_has_avx2();
   std::vector<std::uint16_t> returned(op == GL_RETURN ? 4 * static_cast<std::size_t>(std::max(width, 0)) : 0);
   for (int y = r.y0; y < r.y1 && width > 0; ++y) {
     const std::size_t p = fb.pixel_index(r.x0, y);

@@ -13,12 +13,8 @@
 
 namespace passim {
 
-struct AccumRegion {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
-};
-
 // op is GL_ACCUM, GL_LOAD, GL_ADD, GL_MULT or GL_RETURN (validated by the caller).
-void accumulate(GLenum op, double value, const AccumRegion& region, const ColorPlane& read,
+void accumulate(GLenum op, double value, const PixelBox& region, const ColorPlane& read,
                 const std::vector<ColorBufferId>& draw, const std::array<bool, 4>& color_mask, Framebuffer& fb,
                 Counters& counters);
 
@@ -40,6 +36,5 @@ void accumulate_row_avx2(const AccumRowOp& op, std::int32_t* acc, const std::uin
 // RETURN: the four colour codes of n pixels, before the colour mask.
 void return_row_scalar(const AccumRowOp& op, const std::int32_t* acc, std::uint16_t* out, int n);
 void return_row_avx2(const AccumRowOp& op, const std::int32_t* acc, std::uint16_t* out, int n);
-bool accumulate_has_avx2();
 
 }  // namespace passim

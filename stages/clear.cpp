@@ -15,13 +15,8 @@ std::int32_t accum_code(double value, int bits) {
 void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const FragmentOpsState& ops,
                    const std::vector<ColorBufferId>& draw_buffers, Framebuffer& fb, Counters& counters) {
   const FramebufferConfig& cfg = fb.config;
-  int x0 = 0, y0 = 0, x1 = cfg.width, y1 = cfg.height;
-  if (ops.scissor_enabled) {
-    x0 = std::clamp(ops.scissor_x, 0, cfg.width);
-    y0 = std::clamp(ops.scissor_y, 0, cfg.height);
-    x1 = std::clamp(ops.scissor_x + ops.scissor_width, x0, cfg.width);
-    y1 = std::clamp(ops.scissor_y + ops.scissor_height, y0, cfg.height);
-  }
+  const PixelBox box = scissored_window(ops, cfg.width, cfg.height);
+  const int x0 = box.x0, y0 = box.y0, x1 = box.x1, y1 = box.y1;  // plain ints: lambdas capture them
   const std::uint64_t pixels = static_cast<std::uint64_t>(x1 - x0) * static_cast<std::uint64_t>(y1 - y0);
   ++counters.clears;
   if (pixels == 0) return;

@@ -2,10 +2,7 @@
 
 #include <algorithm>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define PASSIM_HAVE_AVX2_KERNEL 1
-#endif
+#include "stages/avx2.hpp"
 
 namespace passim {
 
@@ -68,13 +65,6 @@ __attribute__((target("avx2"))) void convolve_interior_avx2(const InteriorRows& 
 
 }  // namespace
 
-bool convolution_has_avx2() {
-#if defined(PASSIM_HAVE_AVX2_KERNEL)
-  return __builtin_cpu_supports("avx2");
-#else
-  return false;
-#endif
-}
 
 Rgba ConvolutionFilter::tap(int n, int m) const {
   if (separable) {
@@ -130,7 +120,7 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
   // The output columns whose footprint lies inside the image: [i_in0, i_in1).
   const int i_in0 = std::min(cw, wo), i_in1 = std::max(i_in0, std::min(wo, ws - wf + cw + 1));
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  const bool wide = kernel == ConvolutionKernel::Fastest && convolution_has_avx2();
+  const bool wide = kernel == ConvolutionKernel::Fastest && cpu_has_avx2();
   std::vector<Rgba> component_taps(taps.size());
   for (std::size_t t = 0; t < taps.size(); ++t)
     for (std::size_t k = 0; k < 4; ++k) component_taps[t][k] = taps[t][static_cast<std::size_t>(source[k])];

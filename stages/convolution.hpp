@@ -35,6 +35,5 @@ struct ConvolutionFilter {
 enum class ConvolutionKernel { Scalar, Fastest };
 void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters,
               ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr);
-bool convolution_has_avx2();
 
 }  // namespace passim

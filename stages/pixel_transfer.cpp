@@ -6,10 +6,7 @@
 #include <bit>
 #include <cmath>
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#include <immintrin.h>
-#define PASSIM_HAVE_AVX2_KERNEL 1
-#endif
+#include "stages/avx2.hpp"
 
 namespace passim {
 
@@ -109,13 +106,13 @@ void color_codes_from_reals_scalar(const Rgba* pixels, std::size_t n, const doub
 }
 
 void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
-  (transfer_has_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
+  (cpu_has_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
 }
 
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
                    Counters& counters, int dims, std::vector<Rgba>* spare) {
   const TransferPlan plan = plan_transfer(s, m);
-  const bool wide = transfer_has_avx2();
+  const bool wide = cpu_has_avx2();
   const std::uint64_t n_in = pixels.size();
   (wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar)(plan, pixels.data(),
                                                                                               pixels.size());
@@ -207,9 +204,8 @@ TableLookup table_lookup(const ColorTable* t) {
 __attribute__((target("avx2"))) inline __m256d load_rgba(const Rgba& p) { return _mm256_loadu_pd(p.data()); }
 __attribute__((target("avx2"))) inline __m256d to_vec(const Vec4& v) { return _mm256_setr_pd(v[0], v[1], v[2], v[3]); }
 
-// clamp_nan_low(c, 0, 1): MAXPD returns its second operand (0) when c is NaN.
 __attribute__((target("avx2"))) inline __m256d clamp_unit(__m256d c) {
-  return _mm256_min_pd(_mm256_max_pd(c, _mm256_setzero_pd()), _mm256_set1_pd(1.0));
+  return clamp_nan_low_4(c, _mm256_setzero_pd(), _mm256_set1_pd(1.0));
 }
 
 __attribute__((target("avx2"))) inline __m256d lookup(const TableLookup& t, __m256d c, __m256d mask) {
@@ -280,7 +276,6 @@ __attribute__((target("avx2"))) void color_codes_from_reals_avx2(const Rgba* pix
   }
 }
 
-bool transfer_has_avx2() { return __builtin_cpu_supports("avx2"); }
 #else
 void transfer_pre_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n) {
   transfer_pre_convolution_scalar(plan, pixels, n);
@@ -291,7 +286,6 @@ void transfer_post_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std:
 void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
   color_codes_from_reals_scalar(pixels, n, max, out);
 }
-bool transfer_has_avx2() { return false; }
 #endif
 
 void transfer_stencil(std::vector<double>& indices, const PixelTransferState& s, Counters& counters) {

@@ -95,7 +95,6 @@ void transfer_pre_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std
 void transfer_pre_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n);
 void transfer_post_convolution_scalar(const TransferPlan& plan, Rgba* pixels, std::size_t n);
 void transfer_post_convolution_avx2(const TransferPlan& plan, Rgba* pixels, std::size_t n);
-bool transfer_has_avx2();
 
 // The final conversion of a pixel rectangle's colours (§3.6.4, §2.13.9): clamp each
 // component to [0, 1] (NaN to 0), then code = ⌊c·max_k + ½⌋; four codes per pixel.

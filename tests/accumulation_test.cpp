@@ -7,6 +7,7 @@
 #include "pipeline/fixed_point.hpp"
 #include "pipeline/gl.hpp"
 #include "stages/accumulate.hpp"
+#include "stages/avx2.hpp"
 #include "test_util.hpp"
 
 using namespace passim;
@@ -101,10 +102,27 @@ TEST(Accumulation, ScissorLimitsTheRegion) {
   EXPECT_EQ(ctx.total_counters().accum_load_pixels, 2u);
 }
 
+TEST(Accumulation, ScissorBoxReachingPastIntMaxIsCutAtTheWindow) {
+  // x + width = 1 + INT_MAX overflows an int: the box is computed in 64 bits, [1, 4) here.
+  Context ctx(test::small_config(4, 1, 8));
+  fill(ctx, 255, 8);
+  ctx.glEnable(GL_SCISSOR_TEST);
+  ctx.glScissor(1, 0, 2147483647, 1);
+  ctx.glAccum(GL_LOAD, 1.0f);
+  EXPECT_EQ(ctx.framebuffer().accum[0], 0);
+  EXPECT_EQ(ctx.framebuffer().accum[4], 32767);
+  EXPECT_EQ(ctx.framebuffer().accum[12], 32767);
+  EXPECT_EQ(ctx.total_counters().accum_load_pixels, 3u);
+  ctx.glClearColor(0, 0, 0, 0);
+  ctx.glClear(GL_COLOR_BUFFER_BIT);  // the same box: pixel 0 keeps 255
+  EXPECT_EQ(pixel(ctx, 0, 0)[0], 255u);
+  EXPECT_EQ(pixel(ctx, 3, 0)[0], 0u);
+}
+
 TEST(AccumulationKernels, Avx2RowsMatchTheScalarReferenceBitForBit) {
   // Random accumulation codes (the extremes included) and read codes, every operation, values
   // that saturate, NaN and infinities; the AVX2 rows must equal the scalar reference exactly.
-  if (!accumulate_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
   std::mt19937 rng(20261122);
   const double values[] = {0.25, -0.5, 1.0, 3.7, 1e-300, -0.0, 0.999999, std::nan(""), INFINITY, -INFINITY};
   const int n = 37;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "pipeline/gl.hpp"
+#include "stages/avx2.hpp"
 #include "stages/pixel_transfer.hpp"
 
 using namespace passim;
@@ -41,7 +42,7 @@ void random_table(std::mt19937& rng, ColorTable& table) {
 }  // namespace
 
 TEST(PixelTransferKernels, Avx2MatchesTheScalarReferenceBitForBit) {
-  if (!transfer_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
   std::mt19937 rng(1122);
   std::uniform_real_distribution<double> coefficient(-2.0, 2.0);
   for (int trial = 0; trial < 300; ++trial) {
@@ -94,7 +95,7 @@ TEST(PixelTransferKernels, TheFinalConversionRoundsAsTheSpecSays) {
 TEST(PixelTransferKernels, ConvolutionAvx2MatchesTheScalarReferenceBitForBit) {
   // Every filter size 1-7 x 1-7 (and separable ones), every base format and border mode, on
   // images wider, narrower and smaller than the filter.
-  if (!convolution_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
   std::mt19937 rng(2211);
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
   const GLenum bases[] = {GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY, GL_RGB, GL_RGBA};
