@@ -16,6 +16,19 @@ void TextureStage::process(FragmentSpan& span) {
   const auto& bits = setup_.fragment_bits;
   Counters& counters = *counters_;
   const double* values[4] = {code_values(bits[0]), code_values(bits[1]), code_values(bits[2]), code_values(bits[3])};
+  auto general = [&](int i) {
+    const TexelValue tv =
+        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);
+    std::uint16_t* c = span.rgba + 4 * i;
+    const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
+    const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
+    // A4: the textured colour is rounded to the fragment colour width.
+    for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
+  };
+  // REPLACE (Table 3.18): which components the texture replaces, for both fast paths.
+  const bool color = env_base != GL_ALPHA;
+  const bool alpha =
+      env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA || env_base == GL_INTENSITY;
   // Fast path: NEAREST at every λ on the base level, no comparison, REPLACE. The texel's
   // replacing components become float_to_fixed(texel value) at the fragment's widths
   // (Table 3.18 with A4's rounding), the others stay: the general path's arithmetic with
@@ -23,20 +36,14 @@ void TextureStage::process(FragmentSpan& span) {
   const bool fast = !general_path_only && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
                     setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
   if (fast) {
-    const bool color = env_base != GL_ALPHA;
-    const bool alpha = env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA ||
-                       env_base == GL_INTENSITY;
     const std::vector<std::uint16_t>& codes = base.codes_at(bits);
     const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
     std::uint64_t fetched = 0;
     for (int i = 0; i < span.count; ++i) {
       const std::int64_t p = nearest_texel_index(tex, base, setup_.dims, span.s[i], span.t[i]);
       std::uint16_t* c = span.rgba + 4 * i;
-      if (p < 0) {  // the border colour: the general arithmetic
-        const TexelValue tv = sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], 0.0, 0, counters);
-        const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
-        const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
-        for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
+      if (p < 0) {  // the border colour: the general arithmetic (λ chooses nothing: both filters NEAREST)
+        general(i);
         continue;
       }
       ++fetched;
@@ -51,15 +58,6 @@ void TextureStage::process(FragmentSpan& span) {
     next_->process(span);
     return;
   }
-  auto general = [&](int i) {
-    const TexelValue tv =
-        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);
-    std::uint16_t* c = span.rgba + 4 * i;
-    const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
-    const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
-    // A4: the textured colour is rounded to the fragment colour width.
-    for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
-  };
   // Fast path: LINEAR for both filters (so λ chooses nothing), no comparison, REPLACE. The
   // filter is sample_texture's (linear_stored_footprint shares its expressions); REPLACE
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
@@ -67,9 +65,6 @@ void TextureStage::process(FragmentSpan& span) {
   const bool fast_linear = !general_path_only && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
                            setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
   if (fast_linear) {
-    const bool color = env_base != GL_ALPHA;
-    const bool alpha = env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA ||
-                       env_base == GL_INTENSITY;
     std::uint64_t filtered = 0;
     const LinearLevel level = linear_level(tex, base, setup_.dims);
     for (int i = 0; i < span.count; ++i) {
