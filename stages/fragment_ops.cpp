@@ -31,6 +31,23 @@ double blend_component(GLenum equation, double s, double d, double sf, double df
   }
 }
 
+std::uint32_t blend_codes_unit_factors(GLenum equation, bool src_one, bool dst_one, std::uint32_t s,
+                                       std::uint32_t d, std::uint32_t max) {
+  const std::uint32_t sp = src_one ? s : 0, dp = dst_one ? d : 0;
+  switch (equation) {
+    case GL_FUNC_SUBTRACT: return sp > dp ? sp - dp : 0;
+    case GL_FUNC_REVERSE_SUBTRACT: return dp > sp ? dp - sp : 0;
+    case GL_MIN: return std::min(s, d);
+    case GL_MAX: return std::max(s, d);
+    default: return std::min(sp + dp, max);  // GL_FUNC_ADD
+  }
+}
+
+bool blend_has_unit_factors(GLenum equation, GLenum src_factor, GLenum dst_factor) {
+  auto unit = [](GLenum f) { return f == GL_ZERO || f == GL_ONE; };
+  return equation == GL_MIN || equation == GL_MAX || (unit(src_factor) && unit(dst_factor));
+}
+
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask) {
   std::uint32_t r;
   switch (op) {
@@ -349,6 +366,26 @@ void FragmentOps::process(FragmentSpan& span) {
       }
       continue;
     }
+    if (blend_on && same_widths && !general_path_only &&
+        blend_has_unit_factors(ops.blend_equation, ops.blend_src, ops.blend_dst)) {
+      // Factors 0 and 1 on codes of one width: the same results in integers. A channel
+      // without bits is not written, so it needs no value.
+      const bool src_one = ops.blend_src == GL_ONE, dst_one = ops.blend_dst == GL_ONE;
+      std::uint64_t blended = 0;
+      for (int i = begin; i < end; ++i) {
+        if (!live[i]) continue;
+        ++blended;
+        std::uint16_t* d = dst + 4 * i;
+        const std::uint16_t* s = span.rgba + 4 * i;
+        for (int k = 0; k < 4; ++k)
+          if (ctl.color_mask[k] && cfg.color_bits[k] > 0)
+            d[k] = static_cast<std::uint16_t>(blend_codes_unit_factors(ops.blend_equation, src_one, dst_one, s[k],
+                                                                       d[k], max_code(cfg.color_bits[k])));
+      }
+      counters.blend_operations += blended;
+      counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
+      continue;
+    }
     // Code -> real tables for this span's widths (k/(2^n − 1); a 0-bit channel reads 1).
     static const double kOne = 1.0;
     const double* src_values[4];
@@ -357,6 +394,7 @@ void FragmentOps::process(FragmentSpan& span) {
       src_values[k] = fragment_bits[k] ? code_values(fragment_bits[k]) : nullptr;
       dst_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
     }
+    const bool products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
@@ -371,7 +409,7 @@ void FragmentOps::process(FragmentSpan& span) {
         for (int k = 0; k < 4; ++k) {
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
           const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
-          const int product_bits = in_.arithmetic && in_.arithmetic->blend_products_rounded ? cfg.color_bits[k] : 0;
+          const int product_bits = products_rounded ? cfg.color_bits[k] : 0;
           out[k] = float_to_fixed(blend_component(ops.blend_equation, src[k], dcol[k], sf, df, product_bits),
                                   cfg.color_bits[k]);
         }

@@ -211,9 +211,10 @@ TEST(FlatShading, ProvokingVertexIsLastForTrianglesFirstForPolygons) {
 #include <random>
 
 #include "stages/fragment_ops.hpp"
+#include "pipeline/fixed_point.hpp"
 
 TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
-  // Random triangles under random depth functions, depth masks, colour masks, scissor:
+  // Random triangles under random depth functions, depth masks, colour masks, scissor, blend:
   // planes and counters must be identical with and without the specialised path.
   const GLenum funcs[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
   auto draw = [&](Context& ctx, unsigned seed) {
@@ -230,6 +231,12 @@ TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
         (rng() % 3 == 0) ? ctx.glEnable(GL_SCISSOR_TEST) : ctx.glDisable(GL_SCISSOR_TEST);
         ctx.glScissor(static_cast<int>(rng() % 16), static_cast<int>(rng() % 16), 10, 12);
         ctx.glShadeModel(rng() % 2 ? GL_FLAT : GL_SMOOTH);
+        // Blending with unit factors takes the integer blend; others the real arithmetic.
+        const GLenum factors[] = {GL_ZERO, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_SRC_ALPHA};
+        const GLenum equations[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
+        (rng() % 2) ? ctx.glEnable(GL_BLEND) : ctx.glDisable(GL_BLEND);
+        ctx.glBlendEquation(equations[rng() % 5]);
+        ctx.glBlendFunc(factors[rng() % (rng() % 3 ? 2 : 4)], factors[rng() % (rng() % 3 ? 2 : 4)]);
       }
       ctx.glBegin(GL_TRIANGLES);
       for (int v = 0; v < 3; ++v) {
@@ -251,6 +258,45 @@ TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
       ASSERT_TRUE(fast.total_counters() == general.total_counters()) << seed;
     }
   }
+}
+
+TEST(Blend, UnitFactorsInIntegersEqualTheRealArithmetic) {
+  // The integer blend for factors 0/1 (and MIN/MAX) against §4.1.6 in reals rounded by
+  // §2.13.9, with and without the products rounded: every 8-bit pair, random 12/16-bit
+  // pairs and the pairs whose sum or difference sits at the ends of the range.
+  const GLenum equations[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
+  auto check = [&](int bits, std::uint32_t a, std::uint32_t b) {
+    const std::uint32_t m = max_code(bits);
+    for (GLenum eq : equations)
+      for (int sf = 0; sf < 2; ++sf)
+        for (int df = 0; df < 2; ++df)
+          for (int rounded : {0, bits}) {
+            const double real = blend_component(eq, fixed_to_float(a, bits), fixed_to_float(b, bits), sf, df, rounded);
+            const std::uint32_t want = float_to_fixed(real, bits);
+            const std::uint32_t got = blend_codes_unit_factors(eq, sf == 1, df == 1, a, b, m);
+            if (got != want) {
+              ADD_FAILURE() << bits << " bits, eq " << eq << " sf " << sf << " df " << df << ": " << a << ", " << b
+                            << " -> " << got << " want " << want;
+              return false;
+            }
+          }
+    return true;
+  };
+  for (std::uint32_t a = 0; a < 256; ++a)
+    for (std::uint32_t b = 0; b < 256; ++b)
+      if (!check(8, a, b)) return;
+  std::mt19937 rng(5);
+  for (int bits : {12, 16}) {
+    const std::uint32_t m = max_code(bits);
+    for (int n = 0; n < 20000; ++n)
+      if (!check(bits, rng() % (m + 1), rng() % (m + 1))) return;
+    for (std::uint32_t a = 0; a <= m; a += (bits == 12 ? 1 : 7)) {
+      if (!check(bits, a, m - a) || !check(bits, a, a) || !check(bits, a, m - a + (a > 0 ? 1 : 0))) return;
+    }
+  }
+  EXPECT_TRUE(blend_has_unit_factors(GL_FUNC_ADD, GL_ONE, GL_ZERO));
+  EXPECT_TRUE(blend_has_unit_factors(GL_MIN, GL_SRC_ALPHA, GL_DST_COLOR));
+  EXPECT_FALSE(blend_has_unit_factors(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_ONE));
 }
 
 TEST(Blend, ProductsRoundedOneByOneInTheMesaProfile) {
