@@ -395,6 +395,10 @@ int main(int argc, char** argv) {
   program->add_option("--seed", pc.options.seed, "pcf, reeves: jitter seed")->capture_default_str();
   program->add_option("--sampling", pc.options.sampling, "reeves: random, gaussian or jittered")->capture_default_str();
   program->add_flag("--intermediates", pc.options.intermediates, "Also write every intermediate buffer");
+  program->add_option("--threads", pc.options.threads,
+                      "Threads of rasterization, 1-64: the same images and counters at any number (docs/threads.md)")
+      ->check(CLI::Range(1, Context::kMaxThreads))
+      ->capture_default_str();
   program->add_option("--out,-o", pc.out, "Output directory")->capture_default_str();
   program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");
   program->add_flag("--quiet,-q", pc.quiet, "Print nothing but errors");

@@ -91,6 +91,8 @@ CallInfo row(std::string_view name, std::string_view sig, unsigned flags) {
   info.signature = sig;
   info.compiled_into_lists = !(flags & (kNotCompiled | kQuery));
   info.allowed_in_begin_end = flags & kInBeginEnd;
+  info.keeps_raster_queue = info.allowed_in_begin_end || name == "glBegin" || name == "glDrawArrays" ||
+                            name == "glDrawElements" || name.starts_with("glRect");
   info.query = flags & kQuery;
   info.recorded_at_draw = flags & kRecordAtDraw;
   info.invoke = &Invoker<MF>::call;

@@ -49,6 +49,9 @@ struct CallInfo {
   std::string_view signature;
   bool compiled_into_lists = true;  // §5.4: false for the calls executed immediately
   bool allowed_in_begin_end = false;  // §2.6.3
+  // Changes no state the fragment stages read, so queued primitives may wait past it
+  // (pipeline/raster_lanes): the calls allowed in Begin/End, Begin, the draws and Rect.
+  bool keeps_raster_queue = false;
   void (*invoke)(Context&, std::span<const Value>) = nullptr;
   bool returns_value = false;
   bool query = false;            // has output arguments: never recorded or compiled

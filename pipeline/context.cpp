@@ -32,11 +32,25 @@ Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
   textures_.gen[1].object_plane = textures_.gen[1].eye_plane = Vec4(0.0, 1.0, 0.0, 0.0);
   transfer_.minmax.reset();
   update_fragment_bits();
-  scratch_->fragment_ops.configure(
-      FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_, &profile_.arithmetic});
+  scratch_->stages.ops.configure(fragment_ops_input());
 }
 
 Context::~Context() = default;
+
+void Context::set_threads(int threads) {
+  run_raster_queue();
+  threads = std::clamp(threads, 1, kMaxThreads);
+  if (threads == this->threads()) return;
+  scratch_->lanes.reset();
+  if (threads > 1) scratch_->lanes = std::make_unique<RasterLanes>(fb_, threads);
+}
+
+int Context::threads() const { return scratch_->lanes ? scratch_->lanes->lanes() : 1; }
+
+void Context::run_raster_queue() {
+  raster_queued_ = false;
+  if (scratch_->lanes) scratch_->lanes->flush(counters());
+}
 
 void Context::update_fragment_bits() {
   fragment_bits_ = fb_.config.color_bits;

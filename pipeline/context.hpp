@@ -26,6 +26,9 @@
 
 namespace passim {
 
+struct FragmentStagesSetup;
+struct FragmentOpsInput;
+
 // Receives every call the application makes (outermost calls only), for recording.
 class CallSink {
  public:
@@ -331,11 +334,20 @@ class Context {
   // Bits of each fragment colour channel (A26: alpha carried at RGB precision when the
   // framebuffer has fewer than 2 alpha bits).
   const std::array<int, 4>& fragment_color_bits() const { return fragment_bits_; }
+  // Threads of rasterization and fragment processing (1 = this thread only). Any number
+  // gives the same bits and counters (docs/threads.md); at most kMaxThreads.
+  void set_threads(int threads);
+  int threads() const;
+  static constexpr int kMaxThreads = 64;
 
   // Call-table plumbing (used by PASSIM_ENTRY; see calls.cpp).
   struct CallScope {
     explicit CallScope(Context& c) : ctx(c) { ++ctx.call_depth_; }
-    ~CallScope() { --ctx.call_depth_; }
+    // Primitives queued to the raster lanes are run when the outermost call that drew them
+    // returns, unless it left a Begin/End open (the rest of it follows).
+    ~CallScope() {
+      if (--ctx.call_depth_ == 0 && ctx.raster_queued_ && !ctx.in_begin_) ctx.run_raster_queue();
+    }
     bool outermost() const { return ctx.call_depth_ == 1; }
     Context& ctx;
   };
@@ -452,6 +464,10 @@ class Context {
   void set_tex_env(GLenum target, GLenum pname, const double* v);
   void set_tex_gen(GLenum coord, GLenum pname, const double* v);
   // Chooses the stages (texture, fog) the next primitive's fragments pass before the per-fragment ops.
+  // The stage setup of a primitive drawn now (and its options' texture and fog parts);
+  // prepare_fragment_stages connects this thread's stages to it, fragment_sink() their first.
+  FragmentStagesSetup fragment_stages_setup(TriangleOptions& options);
+  FragmentOpsInput fragment_ops_input() const;
   void prepare_fragment_stages(TriangleOptions& options);
   FragmentSink& fragment_sink();
   void set_fog(GLenum pname, const double* v);
@@ -532,7 +548,6 @@ class Context {
   } raster_;
   PixelTransferState transfer_;
   double zoom_x_ = 1.0, zoom_y_ = 1.0;
-  FragmentSink* first_stage_ = nullptr;  // where the prepared primitive's fragments go first
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};
   bool normal_matrix_dirty_ = true;
@@ -564,6 +579,8 @@ class Context {
   // recording
   CallSink* sink_ = nullptr;
   int call_depth_ = 0;
+  bool raster_queued_ = false;  // primitives wait in the raster lanes
+  void run_raster_queue();
 
   // passes
   std::vector<Pass> passes_;
@@ -638,6 +655,7 @@ bool Context::intercept(const CallInfo& info, const A&... args) {
     current_call_ = __func__;                                                                \
     if (intercept(passim_call_info_ __VA_OPT__(, ) __VA_ARGS__)) return ret;                 \
   }                                                                                          \
+  if (raster_queued_ && !passim_call_info_.keeps_raster_queue) run_raster_queue();             \
   if (in_begin_ && !passim_call_info_.allowed_in_begin_end) {                                \
     set_error(GL_INVALID_OPERATION);                                                         \
     return ret;                                                                              \

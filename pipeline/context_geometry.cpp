@@ -520,10 +520,8 @@ void Context::draw_point(const ProcessedVertex& v) {
     ++c.primitives_clipped_out;
     return;
   }
-  RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits, fb_.config.depth_bits,
-                      fragment_bits_};
   TriangleOptions options;
-  prepare_fragment_stages(options);
+  const FragmentStagesSetup setup = fragment_stages_setup(options);
   ProcessedVertex lit = v;
   if (lit.light_pending) light_pending_vertex(lit, 0);
   const RasterVertex w = to_window(lit, 0);
@@ -532,7 +530,13 @@ void Context::draw_point(const ProcessedVertex& v) {
     ++c.primitives_clipped_out;
     return;
   }
-  rasterize_point(w, polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
+  if (scratch_->lanes) {
+    scratch_->lanes->point(w, polygon_.point_size, setup, c);
+    raster_queued_ = true;
+    return;
+  }
+  scratch_->stages.connect(setup);
+  rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
 }
 
 void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
@@ -599,14 +603,17 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
   }
 
-  const RasterTarget target{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
-                            fb_.config.depth_bits, fragment_bits_};
   const GLenum mode = front ? polygon_.mode_front : polygon_.mode_back;
   TriangleOptions options;
-  prepare_fragment_stages(options);
+  const FragmentStagesSetup setup = fragment_stages_setup(options);
+  RasterLanes* lanes = scratch_->lanes.get();
+  if (lanes) raster_queued_ = true;
+  else scratch_->stages.connect(setup);
   if (mode == GL_POINT) {
-    for (const RasterVertex& w : win)
-      rasterize_point(w, polygon_.point_size, target, scratch_->spans, fragment_sink(), c);
+    for (const RasterVertex& w : win) {
+      if (lanes) lanes->point(w, polygon_.point_size, setup, c);
+      else rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
+    }
     return;
   }
   if (mode == GL_LINE) {
@@ -619,8 +626,10 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   options.offset_factor = polygon_.offset_factor;
   options.offset_units = polygon_.offset_units;
   // §3.5.1: a convex polygon may be decomposed; a fan from the first vertex.
-  for (std::size_t k = 1; k + 1 < win.size(); ++k)
-    rasterize_triangle(win[0], win[k], win[k + 1], options, target, scratch_->spans, fragment_sink(), c);
+  for (std::size_t k = 1; k + 1 < win.size(); ++k) {
+    if (lanes) lanes->triangle(win[0], win[k], win[k + 1], options, setup, c);
+    else rasterize_triangle(win[0], win[k], win[k + 1], options, setup.target, scratch_->spans, fragment_sink(), c);
+  }
 }
 
 // ---------------------------------------------------------------- vertex arrays (§2.8)

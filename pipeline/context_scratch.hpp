@@ -3,21 +3,20 @@
 #include <vector>
 
 #include "pipeline/context.hpp"
-#include "stages/fragment_ops.hpp"
+#include "pipeline/raster_lanes.hpp"
 #include "stages/fragment_span.hpp"
-#include "stages/fog.hpp"
-#include "stages/texture_stage.hpp"
+#include "stages/fragment_stages.hpp"
 
 namespace passim {
 
 struct Context::Scratch {
   Scratch(Framebuffer& fb, int width)
-      : spans(width), fragment_ops(fb, counters), texture_stage(counters), fog_stage(counters) {}
+      : spans(width), stages(fb, counters) {}
   Counters* counters = nullptr;  // the current pass's counters
   SpanBuffers spans;
-  FragmentOps fragment_ops;
-  TextureStage texture_stage;  // -> fog_stage or fragment_ops
-  FogStage fog_stage;          // -> fragment_ops
+  FragmentStages stages;  // this thread's: [texture] -> [fog] -> per-fragment operations
+  // With more than one thread of rasterization: the lanes primitives are queued to.
+  std::unique_ptr<RasterLanes> lanes;
   std::vector<ProcessedVertex> polygon, clip_scratch;
   std::vector<RasterVertex> window;
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of

@@ -689,16 +689,18 @@ void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
 
 // ---------------------------------------------------------------- per primitive
 
-void Context::prepare_fragment_stages(TriangleOptions& options) {
+FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   // The stages a primitive's fragments pass through: [texture] -> [fog] -> per-fragment ops.
-  options.fog = fog_.enabled;
-  FragmentSink& after_texture = fog_.enabled ? static_cast<FragmentSink&>(scratch_->fog_stage)
-                                             : static_cast<FragmentSink&>(scratch_->fragment_ops);
-  if (fog_.enabled) scratch_->fog_stage.configure(fog_, fragment_bits_, scratch_->fragment_ops);
-  first_stage_ = &after_texture;
+  FragmentStagesSetup setup;
+  setup.ops = fragment_ops_input();
+  setup.fragment_bits = fragment_bits_;
+  setup.target = RasterTarget{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
+                              fb_.config.depth_bits, fragment_bits_};
+  setup.fog = options.fog = fog_.enabled;
+  setup.fog_state = fog_;
   options.texcoords = false;
   options.lod = false;
-  if (!texturing_enabled_) return;
+  if (!texturing_enabled_) return setup;
   // §3.8.15: TEXTURE_2D takes precedence over TEXTURE_1D; an incomplete texture disables texturing.
   const GLenum target = textures_.enabled_2d ? GL_TEXTURE_2D : GL_TEXTURE_1D;
   const int dims = target == GL_TEXTURE_2D ? 2 : 1;
@@ -707,7 +709,7 @@ void Context::prepare_fragment_stages(TriangleOptions& options) {
   if (last < 0) {
     warn_once(fmt::format("{} is enabled but its texture is incomplete: texturing is disabled (§3.8.10)",
                           enum_name(target)));
-    return;
+    return setup;
   }
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
   options.texcoords = true;
@@ -716,12 +718,20 @@ void Context::prepare_fragment_stages(TriangleOptions& options) {
   options.lod_height = dims == 2 ? base.height - 2 * base.border : 1;
   options.min_lod = tex.min_lod;
   options.max_lod = tex.max_lod;
-  scratch_->texture_stage.configure(
-      TextureStageSetup{&tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_}, after_texture);
-  first_stage_ = &scratch_->texture_stage;
+  setup.texture = true;
+  setup.texture_setup = TextureStageSetup{&tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_};
+  return setup;
 }
 
-FragmentSink& Context::fragment_sink() { return first_stage_ ? *first_stage_ : scratch_->fragment_ops; }
+FragmentOpsInput Context::fragment_ops_input() const {
+  return FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_, &profile_.arithmetic};
+}
+
+void Context::prepare_fragment_stages(TriangleOptions& options) {
+  scratch_->stages.connect(fragment_stages_setup(options));
+}
+
+FragmentSink& Context::fragment_sink() { return *scratch_->stages.first; }
 
 // ---------------------------------------------------------------- fog (§3.10)
 

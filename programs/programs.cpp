@@ -271,7 +271,7 @@ class Program {
   void end() { gl_.glPopGroupMarkerEXT(); }
 
   void capture(std::string name, const std::string& plane, int w, int h, bool intermediate = true) {
-    if (intermediate && !o_.intermediates) return;
+    if ((intermediate && !o_.intermediates) || (!o_.images && !writer_)) return;
     // A pass that repeats (one per map or phase) numbers its captures: mask, mask1, ...
     const int seen = captures_[name]++;
     if (seen > 0) name += std::to_string(seen);
@@ -710,6 +710,7 @@ ProgramSession::ProgramSession(const ProgramOptions& options, bool record) : sta
   if (!invalid.empty()) throw ProgramError(invalid);
 
   run.result.context = std::make_unique<Context>(s.framebuffer, s.machine());
+  run.result.context->set_threads(options.threads);
   if (o.remove_color_tables || o.remove_convolution || o.remove_color_matrix) {
     // A trace cannot say this (it is not GL state): such a session records nothing.
     if (record) throw ProgramError("a program with removed stages cannot be recorded as a trace");

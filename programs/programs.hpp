@@ -47,6 +47,11 @@ struct ProgramOptions {
   std::string sampling = "jittered";  // reeves: random, gaussian or jittered (Reeves et al. (a), (b), (c))
   // The what-if study's removed stages (whatever the program enables; not recorded in traces).
   bool remove_color_tables = false, remove_convolution = false, remove_color_matrix = false;
+  int threads = 1;  // threads of rasterization (Context::set_threads): the same bits at any number
+  // Capture the output images (final, attenuation, shadow map...). Off, frames are only
+  // rendered, as a displayed frame is: the timing benchmark (bench/programs_bench.cpp). A
+  // recorded session captures them regardless (its trace names them).
+  bool images = true;
 };
 
 struct ProgramInfo {

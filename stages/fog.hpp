@@ -16,6 +16,7 @@ struct FogState {
   GLenum mode = GL_EXP;
   double density = 1.0, start = 0.0, end = 1.0;
   Vec4 color{0.0, 0.0, 0.0, 0.0};
+  bool operator==(const FogState&) const = default;
 };
 
 double fog_factor(const FogState& fog, double c);

@@ -20,6 +20,7 @@ struct FragmentOpsInput {
   const std::vector<ColorBufferId>* draw_buffers = nullptr;
   const std::array<int, 4>* fragment_bits = nullptr;  // widths of the span's colour codes
   const ArithmeticOptions* arithmetic = nullptr;      // the profile's open choices
+  bool operator==(const FragmentOpsInput&) const = default;
 };
 
 class FragmentOps final : public FragmentSink {

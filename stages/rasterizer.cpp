@@ -103,7 +103,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
     Y[i] = snap_coordinate(v[i]->y, target.subpixel_bits);
   }
   std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-  ++counters.triangles_rasterized;
+  if (target.counts_primitives()) ++counters.triangles_rasterized;
   if (area == 0) return;  // degenerate after snapping: no pixel centre is strictly inside
   if (area < 0) {         // make the vertex order counter-clockwise (y up)
     std::swap(v[1], v[2]);
@@ -120,6 +120,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   const std::int64_t row_lo = std::max<std::int64_t>(0, ceil_div(min_y - S, pixel));
   const std::int64_t row_hi = std::min<std::int64_t>(target.height - 1, floor_div(max_y - S, pixel));
   if (col_lo > col_hi || row_lo > row_hi) return;
+  if (!target.owns_any_row(row_lo, row_hi)) return;  // another raster lane's rows only
 
   // Edge k runs from vertex k+1 to vertex k+2; E_k(P) = dx·(Py - ay) - dy·(Px - ax) > 0 inside.
   // A5: a centre exactly on an edge is inside when the edge is a left edge (dy < 0) or a
@@ -189,6 +190,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   double color_scale[4];
   for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
   for (std::int64_t row = row_lo; row <= row_hi; ++row) {
+    if (!target.owns_row(row)) continue;
     const std::int64_t py = (2 * row + 1) * S;
     std::int64_t lo = col_lo, hi = col_hi;
     for (const Edge& e : edges) {
@@ -256,6 +258,7 @@ void rasterize_point(const RasterVertex& v, double size, const RasterTarget& tar
   constant_color_codes(v.color, target, codes);
   const std::uint32_t z = depth_code(v.z, target.depth_bits);
   for (std::int64_t row = y_a; row <= y_b; ++row) {
+    if (!target.owns_row(row)) continue;
     const int n = static_cast<int>(x_b - x_a + 1);
     FragmentSpan span = buffers.span(static_cast<int>(row), static_cast<int>(x_a), n);
     counters.fragments_generated += static_cast<std::uint64_t>(n);
@@ -266,7 +269,6 @@ void rasterize_point(const RasterVertex& v, double size, const RasterTarget& tar
       span.t[i] = v.tex[1] / v.tex[3];
       span.r[i] = v.tex[2] / v.tex[3];
       span.lambda[i] = 0.0;
-      span.fog[i] = std::fabs(v.eye_z);
       span.fog[i] = std::fabs(v.eye_z);
     }
     sink.process(span);

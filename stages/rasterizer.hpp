@@ -29,6 +29,25 @@ struct RasterTarget {
   int subpixel_bits = 4;
   int depth_bits = 24;
   std::array<int, 4> color_bits{8, 8, 8, 8};  // fragment colour widths
+  // Row bands (pipeline/raster_lanes): rows are grouped in bands of band_rows and the bands
+  // in cycles of band_cycle; only the rows of bands [band_first, band_first + band_count) of
+  // each cycle are produced, and the per-primitive counters are counted by the owner of
+  // band 0 alone. The default owns every row.
+  int band_rows = 8, band_cycle = 1, band_first = 0, band_count = 1;
+  bool owns_row(std::int64_t row) const {
+    return band_cycle <= 1 || static_cast<std::uint64_t>((row / band_rows) % band_cycle - band_first) <
+                                  static_cast<std::uint64_t>(band_count);
+  }
+  bool owns_any_row(std::int64_t first_row, std::int64_t last_row) const {
+    if (band_cycle <= 1) return true;
+    for (std::int64_t band = first_row / band_rows; band <= last_row / band_rows; ++band) {
+      if (band - first_row / band_rows >= band_cycle) return true;  // a whole cycle: every owner
+      if (owns_row(band * band_rows)) return true;
+    }
+    return false;
+  }
+  bool counts_primitives() const { return band_first == 0; }
+  bool operator==(const RasterTarget&) const = default;
 };
 
 struct TriangleOptions {

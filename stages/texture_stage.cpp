@@ -7,7 +7,22 @@
 namespace passim {
 
 bool TextureStage::general_path_only = false;
-std::atomic<std::uint64_t> TextureStage::fast_path_fragments{0};
+thread_local std::uint64_t TextureStage::fast_path_fragments = 0;
+
+namespace {
+// The NEAREST/REPLACE fast path's condition (it reads TextureLevel::codes_at).
+bool nearest_replace(const TextureObject& tex, const TextureLevel& base, GLenum env_mode) {
+  return !TextureStage::general_path_only && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
+         env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
+}
+}  // namespace
+
+void TextureStage::make_caches(const TextureStageSetup& setup) {
+  const TextureObject& tex = *setup.texture;
+  for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();
+  const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
+  if (nearest_replace(tex, base, setup.env_mode)) base.codes_at(setup.fragment_bits);
+}
 
 void TextureStage::process(FragmentSpan& span) {
   const TextureObject& tex = *setup_.texture;
@@ -33,9 +48,7 @@ void TextureStage::process(FragmentSpan& span) {
   // replacing components become float_to_fixed(texel value) at the fragment's widths
   // (Table 3.18 with A4's rounding), the others stay: the general path's arithmetic with
   // each texel's result computed once (TextureLevel::codes_at).
-  const bool fast = !general_path_only && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
-                    setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
-  if (fast) {
+  if (nearest_replace(tex, base, setup_.env_mode)) {
     const std::vector<std::uint16_t>& codes = base.codes_at(bits);
     const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
     std::uint64_t fetched = 0;
@@ -51,7 +64,7 @@ void TextureStage::process(FragmentSpan& span) {
       if (color) c[0] = t[0], c[1] = t[1], c[2] = t[2];
       if (alpha) c[3] = t[3];
     }
-    fast_path_fragments.fetch_add(fetched, std::memory_order_relaxed);
+    fast_path_fragments += fetched;
     counters.texture_lookups += fetched;
     counters.texels_fetched += fetched;
     counters.texture_bits_read += fetched * texel_bits;
@@ -82,7 +95,7 @@ void TextureStage::process(FragmentSpan& span) {
       }
       if (alpha) c[3] = static_cast<std::uint16_t>(float_to_fixed(tv.a, bits[3]));
     }
-    fast_path_fragments.fetch_add(filtered, std::memory_order_relaxed);
+    fast_path_fragments += filtered;
     counters.texture_lookups += filtered;
     next_->process(span);
     return;

@@ -20,6 +20,7 @@ struct TextureStageSetup {
   GLenum env_mode = GL_MODULATE;
   Vec4 env_color{0.0, 0.0, 0.0, 0.0};
   std::array<int, 4> fragment_bits{8, 8, 8, 8};
+  bool operator==(const TextureStageSetup&) const = default;
 };
 
 class TextureStage final : public FragmentSink {
@@ -30,9 +31,14 @@ class TextureStage final : public FragmentSink {
     next_ = &next;
   }
   void process(FragmentSpan& span) override;
+  // Make the texel caches this setup's sampling reads (TextureLevel::values, codes_at), so
+  // that several threads can then sample the texture without writing to it.
+  static void make_caches(const TextureStageSetup& setup);
   // Tests set this to compare the NEAREST/REPLACE fast path with the general one.
   static bool general_path_only;
-  static std::atomic<std::uint64_t> fast_path_fragments;  // fragments the fast path textured (for tests)
+  // Fragments the fast paths textured on this thread (for tests; per thread, so that
+  // raster lanes do not contend for one counter).
+  static thread_local std::uint64_t fast_path_fragments;
 
  private:
   FragmentSink* next_ = nullptr;

@@ -1,0 +1,44 @@
+// The chain a primitive's fragments run through, in the modelled machine's order:
+// [texture] -> [fog] -> per-fragment operations (design note "stages"). One chain per
+// thread of rasterization: the Context's own, and one per raster lane (pipeline/raster_lanes).
+#pragma once
+#include <array>
+
+#include "stages/fog.hpp"
+#include "stages/fragment_ops.hpp"
+#include "stages/rasterizer.hpp"
+#include "stages/texture_stage.hpp"
+
+namespace passim {
+
+// Everything the chain's stages read for one primitive, by value or by pointer to state
+// that does not change while the primitive's fragments are processed.
+struct FragmentStagesSetup {
+  bool texture = false;
+  TextureStageSetup texture_setup;
+  bool fog = false;
+  FogState fog_state;
+  std::array<int, 4> fragment_bits{8, 8, 8, 8};
+  FragmentOpsInput ops;
+  RasterTarget target;
+  bool operator==(const FragmentStagesSetup&) const = default;
+};
+
+struct FragmentStages {
+  // `counters` is where the stages count: a pointer the owner may re-aim between primitives.
+  FragmentStages(Framebuffer& fb, Counters*& counters) : ops(fb, counters), texture(counters), fog(counters) {}
+  FragmentOps ops;
+  TextureStage texture;
+  FogStage fog;
+  FragmentSink* first = &ops;
+
+  void connect(const FragmentStagesSetup& s) {
+    ops.configure(s.ops);
+    FragmentSink& after_texture = s.fog ? static_cast<FragmentSink&>(fog) : static_cast<FragmentSink&>(ops);
+    if (s.fog) fog.configure(s.fog_state, s.fragment_bits, ops);
+    if (s.texture) texture.configure(s.texture_setup, after_texture);
+    first = s.texture ? static_cast<FragmentSink*>(&texture) : &after_texture;
+  }
+};
+
+}  // namespace passim

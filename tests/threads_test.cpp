@@ -1,0 +1,176 @@
+// Rasterization on several threads gives the same bits and counters as on one
+// (pipeline/raster_lanes.hpp, docs/threads.md): random scenes through every fragment stage,
+// and the papers' programs.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "pipeline/raster_lanes.hpp"
+#include "pipeline/report.hpp"
+#include "programs/programs.hpp"
+#include "test_util.hpp"
+
+namespace passim {
+namespace {
+
+// Random state groups, each a display list with state changes between its primitives:
+// depth, stencil, alpha test, blending (unit and real factors), logic op, masks, scissor,
+// fog, a mipmapped or NEAREST texture, points and polygons drawn as points, and markers.
+void draw_random_scene(Context& ctx, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-8.0f, 72.0f), z(-1.0f, 1.0f), c(0.0f, 1.0f), st(-0.5f, 1.5f);
+  test::window_projection(ctx);
+  ctx.glClearStencil(static_cast<GLint>(rng() % 4));
+  ctx.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  GLuint tex = 0;
+  ctx.glGenTextures(1, &tex);
+  ctx.glBindTexture(GL_TEXTURE_2D, tex);
+  std::vector<float> texels(16 * 16 * 4);
+  for (float& v : texels) v = c(rng);
+  ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA12, 16, 16, 0, GL_RGBA, GL_FLOAT, texels.data());
+  for (int level = 1, size = 8; size >= 1; ++level, size /= 2) {
+    std::vector<float> small(static_cast<std::size_t>(size * size * 4));
+    for (float& v : small) v = c(rng);
+    ctx.glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA12, size, size, 0, GL_RGBA, GL_FLOAT, small.data());
+  }
+  const GLenum funcs[] = {GL_NEVER, GL_LESS, GL_EQUAL, GL_LEQUAL, GL_GREATER, GL_NOTEQUAL, GL_GEQUAL, GL_ALWAYS};
+  const GLenum stencil_ops[] = {GL_KEEP, GL_ZERO, GL_REPLACE, GL_INCR, GL_DECR, GL_INVERT};
+  const GLenum factors[] = {GL_ZERO, GL_ONE, GL_SRC_ALPHA, GL_ONE_MINUS_DST_ALPHA, GL_DST_COLOR};
+  const GLenum equations[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
+  const GLenum filters[] = {GL_NEAREST, GL_LINEAR, GL_LINEAR_MIPMAP_LINEAR, GL_NEAREST_MIPMAP_NEAREST};
+  auto toggle = [&](GLenum cap, unsigned one_in) { (rng() % one_in == 0) ? ctx.glEnable(cap) : ctx.glDisable(cap); };
+  for (int group = 0; group < 4; ++group) {
+    const std::string label = "group " + std::to_string(group);
+    ctx.glPushGroupMarkerEXT(0, label.c_str());
+    const GLuint list = ctx.glGenLists(1);
+    ctx.glNewList(list, GL_COMPILE);
+    for (int part = 0; part < 3; ++part) {
+      toggle(GL_DEPTH_TEST, 4);
+      if (rng() % 4) ctx.glEnable(GL_DEPTH_TEST);
+      ctx.glDepthFunc(funcs[rng() % 8]);
+      ctx.glDepthMask(rng() % 3 != 0);
+      toggle(GL_STENCIL_TEST, 3);
+      ctx.glStencilFunc(funcs[rng() % 8], static_cast<GLint>(rng() % 4), 0xFF);
+      ctx.glStencilOp(stencil_ops[rng() % 6], stencil_ops[rng() % 6], stencil_ops[rng() % 6]);
+      toggle(GL_ALPHA_TEST, 4);
+      ctx.glAlphaFunc(funcs[rng() % 8], c(rng));
+      toggle(GL_BLEND, 2);
+      ctx.glBlendEquation(equations[rng() % 5]);
+      ctx.glBlendFunc(factors[rng() % 5], factors[rng() % 5]);
+      toggle(GL_COLOR_LOGIC_OP, 6);
+      ctx.glLogicOp(GL_XOR);
+      ctx.glColorMask(rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0);
+      toggle(GL_SCISSOR_TEST, 4);
+      ctx.glScissor(static_cast<int>(rng() % 30), static_cast<int>(rng() % 20), 30, 25);
+      toggle(GL_FOG, 4);
+      ctx.glFogi(GL_FOG_MODE, GL_LINEAR);
+      ctx.glFogf(GL_FOG_START, 0.0f);
+      ctx.glFogf(GL_FOG_END, 1.5f);
+      toggle(GL_TEXTURE_2D, 2);
+      ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filters[rng() % 4]));
+      ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, rng() % 2 ? GL_NEAREST : GL_LINEAR);
+      ctx.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, rng() % 2 ? GL_REPLACE : GL_MODULATE);
+      ctx.glShadeModel(rng() % 2 ? GL_FLAT : GL_SMOOTH);
+      ctx.glPolygonMode(GL_FRONT_AND_BACK, rng() % 8 ? GL_FILL : GL_POINT);
+      ctx.glPointSize(static_cast<float>(1 + rng() % 3));
+      ctx.glBegin(rng() % 6 ? GL_TRIANGLES : GL_POINTS);
+      for (int v = 0; v < 3 * 80; ++v) {  // more than RasterLanes::kChunk triangles
+        ctx.glColor4f(c(rng), c(rng), c(rng), c(rng));
+        ctx.glTexCoord2f(st(rng), st(rng));
+        ctx.glVertex3f(pos(rng), pos(rng), z(rng));
+      }
+      ctx.glEnd();
+    }
+    ctx.glEndList();
+    ctx.glCallList(list);
+    ctx.glPopGroupMarkerEXT();
+  }
+}
+
+TEST(Threads, RandomScenesAreTheSameOnAnyNumberOfThreads) {
+  const std::uint64_t runs_before = RasterLanes::threaded_runs;
+  for (int bits : {5, 8, 12}) {
+    for (unsigned seed = 1; seed <= 12; ++seed) {
+      Context one(test::small_config(64, 48, bits));
+      draw_random_scene(one, seed);
+      for (int threads : {2, 3, 7}) {
+        Context many(test::small_config(64, 48, bits));
+        many.set_threads(threads);
+        ASSERT_EQ(many.threads(), threads);
+        draw_random_scene(many, seed);
+        const Framebuffer &a = one.framebuffer(), &b = many.framebuffer();
+        ASSERT_EQ(a.color[0].rgba, b.color[0].rgba) << bits << " bits, seed " << seed << ", " << threads << " threads";
+        ASSERT_EQ(a.depth, b.depth) << bits << " " << seed << " " << threads;
+        ASSERT_EQ(a.stencil, b.stencil) << bits << " " << seed << " " << threads;
+        ASSERT_EQ(one.passes().size(), many.passes().size());
+        for (std::size_t p = 0; p < one.passes().size(); ++p)
+          ASSERT_TRUE(one.passes()[p].counters == many.passes()[p].counters)
+              << bits << " " << seed << " " << threads << " pass " << one.passes()[p].label;
+        ASSERT_TRUE(one.total_counters() == many.total_counters());
+        ASSERT_EQ(one.error_log().size(), many.error_log().size());
+      }
+    }
+  }
+  EXPECT_GT(RasterLanes::threaded_runs - runs_before, 100u);  // the lanes did run in parallel
+}
+
+TEST(Threads, ProgramsGiveTheSameImagesAndCountersOnAnyNumberOfThreads) {
+  struct Case {
+    const char* program;
+    int filter, depths;
+    const char* scene;
+    bool linear;
+  };
+  for (const Case& c : {Case{"shadow-map", 0, 1, "paper", false}, Case{"fast-pcf", 4, 1, "paper", false},
+                        Case{"pcf", 2, 1, "edges", false}, Case{"mdsm", 2, 2, "edges", false},
+                        Case{"hw-shadow", 0, 1, "edges", true}}) {
+    auto run = [&](int threads) {
+      ProgramOptions o;
+      o.program = c.program;
+      o.filter = c.filter;
+      o.depths = c.depths;
+      o.scene = c.scene;
+      o.linear = c.linear;
+      o.color_bits = 12;
+      o.threads = threads;
+      return run_program(o);
+    };
+    const ProgramRun one = run(1);
+    for (int threads : {2, 3}) {
+      const ProgramRun many = run(threads);
+      ASSERT_EQ(one.result.images.size(), many.result.images.size());
+      for (std::size_t k = 0; k < one.result.images.size(); ++k)
+        EXPECT_EQ(one.result.images[k].hash, many.result.images[k].hash)
+            << c.program << " " << threads << " threads: " << one.result.images[k].name;
+      const nlohmann::json a = run_report(one.result, "one", {}), b = run_report(many.result, "many", {});
+      EXPECT_EQ(a["passes"], b["passes"]) << c.program << " " << threads << " threads";
+      EXPECT_EQ(a["total"], b["total"]) << c.program << " " << threads << " threads";
+      EXPECT_EQ(one.trace, many.trace) << c.program;
+    }
+  }
+}
+
+TEST(Threads, SettingTheNumberIsClampedAndKeepsWhatWasDrawn) {
+  Context ctx(test::small_config(8, 8));
+  EXPECT_EQ(ctx.threads(), 1);
+  ctx.set_threads(0);
+  EXPECT_EQ(ctx.threads(), 1);
+  ctx.set_threads(1000);
+  EXPECT_EQ(ctx.threads(), Context::kMaxThreads);
+  // A Begin/End left open keeps its primitives queued; changing the number of threads
+  // runs them first (a red full-window quad: every pixel 255, 0, 0).
+  test::window_projection(ctx);
+  ctx.glColor3f(1, 0, 0);
+  ctx.glBegin(GL_QUADS);
+  ctx.glVertex2f(0, 0);
+  ctx.glVertex2f(8, 0);
+  ctx.glVertex2f(8, 8);
+  ctx.glVertex2f(0, 8);
+  ctx.set_threads(2);
+  EXPECT_EQ(test::pixel(ctx, 3, 5)[0], 255u);
+  ctx.glEnd();
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+}  // namespace
+}  // namespace passim
