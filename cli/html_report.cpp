@@ -144,13 +144,15 @@ int html_report_command(const std::string& study_dir, const std::string& out_fil
                   [](const nlohmann::json& r) { return r.at("mean_abs_error").get<double>(); });
     html += chart("precision (bits)", "bits", false, [](const nlohmann::json& r) { return r.at("precision_bits").get<double>(); });
     html += chart("shadow levels", "levels", false, [](const nlohmann::json& r) { return r.at("levels").get<double>(); });
-    html += chart("misclassified pixels", "pixels", false, [](const nlohmann::json& r) {
+    html += chart("misclassified pixels (against the reference)", "pixels", false, [](const nlohmann::json& r) {
       return r.at("lit_but_shadowed").get<double>() + r.at("shadowed_but_lit").get<double>();
     });
+    html += chart("self-shadowed pixels (against the reference)", "pixels", false,
+                  [](const nlohmann::json& r) { return r.at("self_shadowed").get<double>(); });
     html += "</div><h2>Table</h2><table><tr>";
     const char* columns[] = {"color_bits", "depth_bits", "map_size", "bias_8bit_steps", "levels", "mean_abs_error",
                              "max_abs_error", "precision_bits", "lit_but_shadowed", "shadowed_but_lit", "self_shadowed",
-                             "depth_step_world"};
+                             "exact_lit_but_shadowed", "exact_self_shadowed", "depth_step_world"};
     for (const char* c : columns) html += std::string("<th>") + c + "</th>";
     html += "</tr>";
     for (const nlohmann::json& r : rows) {

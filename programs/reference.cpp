@@ -441,7 +441,7 @@ SameSamples same_samples(const ProgramRun& run) {
   return out;
 }
 
-Classification classify(const ProgramRun& run) {
+Classification classify(const ProgramRun& run, const std::vector<double>* reference) {
   const RayCaster caster(run.scene);
   const ProgramOptions& o = run.options;
   const std::vector<PixelSurface> surfaces = camera_surfaces(run.scene, caster, o.width, o.height);
@@ -461,6 +461,14 @@ Classification classify(const ProgramRun& run) {
       if (faces) ++c.self_shadowed, ++c.self_shadowed_by_mesh[static_cast<std::size_t>(s.mesh)];
     }
     if (exact && !attenuated) ++c.shadowed_lit;
+    if (reference) {
+      const double ref = (*reference)[k];
+      if (ref == 0.0 && attenuated) {
+        ++c.ref_lit_shadowed;
+        if (faces) ++c.ref_self_shadowed;
+      }
+      if (ref > 0.0 && !attenuated) ++c.ref_shadowed_lit;
+    }
   }
   return c;
 }

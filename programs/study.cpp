@@ -58,10 +58,11 @@ nlohmann::json sweep_json(const StudySweep& s) {
 
 std::string StudySweep::id() const { return fnv_text(sweep_json(*this).dump()); }
 
-AttenuationError attenuation_error(const ProgramRun& run) {
+AttenuationError attenuation_error(const ProgramRun& run) { return attenuation_error(run, exact_attenuation(run)); }
+
+AttenuationError attenuation_error(const ProgramRun& run, const std::vector<double>& exact) {
   // Errors against the algorithm without quantisation, over the pixels that see a surface.
   const CapturedImage& att = run.image("attenuation");
-  const std::vector<double> exact = exact_attenuation(run);
   const double max_code = static_cast<double>((std::uint64_t{1} << att.bits[0]) - 1);
   AttenuationError r;
   double sum_abs = 0.0, sum_sq = 0.0, sum_ref = 0.0;
@@ -95,7 +96,8 @@ StudyRow run_study_point(const ProgramOptions& point, int index) {
   row.bias_steps8 = o.bias / std::ldexp(1.0, (hw ? o.depth_bits : o.color_bits) - 8);
   const CapturedImage& att = run.image("attenuation");
   row.levels = count_levels(att);
-  const AttenuationError err = attenuation_error(run);
+  const std::vector<double> reference = exact_attenuation(run);
+  const AttenuationError err = attenuation_error(run, reference);
   row.mean_abs_error = err.mean_abs;
   row.max_abs_error = err.max_abs;
   row.precision_bits = err.precision_bits;
@@ -123,10 +125,13 @@ StudyRow run_study_point(const ProgramOptions& point, int index) {
         }
     e.hash = fnv1a_hex(e.codes, 1);
   }
-  const Classification c = classify(run);
-  row.lit_shadowed = c.lit_shadowed;
-  row.shadowed_lit = c.shadowed_lit;
-  row.self_shadowed = c.self_shadowed;
+  const Classification c = classify(run, &reference);
+  row.lit_shadowed = c.ref_lit_shadowed;
+  row.shadowed_lit = c.ref_shadowed_lit;
+  row.self_shadowed = c.ref_self_shadowed;
+  row.exact_lit_shadowed = c.lit_shadowed;
+  row.exact_shadowed_lit = c.shadowed_lit;
+  row.exact_self_shadowed = c.self_shadowed;
   row.surfaces = c.surfaces;
   const View& light = run.scene.light;
   if (hw) {
@@ -176,11 +181,13 @@ std::vector<StudyRow> run_study(const StudySweep& sweep, int jobs, int shard_ind
 std::string study_csv(const std::vector<StudyRow>& rows) {
   std::string out =
       "index,color_bits,depth_bits,map_size,bias_8bit_steps,levels,mean_abs_error,max_abs_error,precision_bits,"
-      "lit_but_shadowed,shadowed_but_lit,self_shadowed,surfaces,depth_step_world\n";
+      "lit_but_shadowed,shadowed_but_lit,self_shadowed,exact_lit_but_shadowed,exact_shadowed_but_lit,"
+      "exact_self_shadowed,surfaces,depth_step_world\n";
   for (const StudyRow& r : rows)
-    out += fmt::format("{},{},{},{},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{:.9g}\n", r.index, r.color_bits,
-                       r.depth_bits, r.map_size, r.bias_steps8, r.levels, r.mean_abs_error, r.max_abs_error,
-                       r.precision_bits, r.lit_shadowed, r.shadowed_lit, r.self_shadowed, r.surfaces,
+    out += fmt::format("{},{},{},{},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{},{},{},{:.9g}\n", r.index,
+                       r.color_bits, r.depth_bits, r.map_size, r.bias_steps8, r.levels, r.mean_abs_error,
+                       r.max_abs_error, r.precision_bits, r.lit_shadowed, r.shadowed_lit, r.self_shadowed,
+                       r.exact_lit_shadowed, r.exact_shadowed_lit, r.exact_self_shadowed, r.surfaces,
                        r.depth_step_world);
   return out;
 }
@@ -200,6 +207,9 @@ nlohmann::json row_json(const StudyRow& r) {
           {"lit_but_shadowed", r.lit_shadowed},
           {"shadowed_but_lit", r.shadowed_lit},
           {"self_shadowed", r.self_shadowed},
+          {"exact_lit_but_shadowed", r.exact_lit_shadowed},
+          {"exact_shadowed_but_lit", r.exact_shadowed_lit},
+          {"exact_self_shadowed", r.exact_self_shadowed},
           {"surfaces", r.surfaces},
           {"depth_step_world", r.depth_step_world}};
 }
@@ -218,6 +228,9 @@ StudyRow row_from_json(const nlohmann::json& j) {
   r.lit_shadowed = j.at("lit_but_shadowed").get<int>();
   r.shadowed_lit = j.at("shadowed_but_lit").get<int>();
   r.self_shadowed = j.at("self_shadowed").get<int>();
+  r.exact_lit_shadowed = j.at("exact_lit_but_shadowed").get<int>();
+  r.exact_shadowed_lit = j.at("exact_shadowed_but_lit").get<int>();
+  r.exact_self_shadowed = j.at("exact_self_shadowed").get<int>();
   r.surfaces = j.at("surfaces").get<int>();
   r.depth_step_world = j.at("depth_step_world").get<double>();
   return r;

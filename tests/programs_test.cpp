@@ -192,6 +192,30 @@ TEST(Programs, TwelveBitsLeakLessThanEightOnThePaperScene) {
   EXPECT_LT(c12.shadowed_lit, c8.shadowed_lit);
 }
 
+// Misclassification against a reference counts, over the pixels that see a surface, those
+// the reference leaves fully lit (0) but the program attenuates, and the reverse. With a
+// reference of all 0 and of all 1/2 the counts are the image's own nonzero and zero pixels.
+TEST(Programs, ClassificationAgainstAReferenceCountsByDefinition) {
+  const ProgramRun r = run("shadow-map", 0, 8, "edges");
+  const CapturedImage& att = r.image("attenuation");
+  const std::vector<double> exact = exact_attenuation(r);
+  int seen = 0, attenuated = 0;
+  std::vector<double> zero(exact.size(), 0.0), half(exact.size(), 0.5);
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (exact[k] < 0.0) continue;  // no surface: the reference says so, whatever it holds
+    ++seen;
+    attenuated += att.codes[k] > 0;
+  }
+  const Classification lit = classify(r, &zero), shadowed = classify(r, &half);
+  EXPECT_EQ(lit.surfaces, seen);
+  EXPECT_GT(attenuated, 1000);
+  EXPECT_EQ(lit.ref_lit_shadowed, attenuated);
+  EXPECT_EQ(lit.ref_shadowed_lit, 0);
+  EXPECT_LE(lit.ref_self_shadowed, lit.ref_lit_shadowed);
+  EXPECT_EQ(shadowed.ref_lit_shadowed, 0);
+  EXPECT_EQ(shadowed.ref_shadowed_lit, seen - attenuated);
+}
+
 // The software references (double precision, no pipeline) on the edges scene.
 ReferenceRun reference(const char* name, int filter, int depths = 1, const char* sampling = "jittered",
                        std::uint32_t seed = 1, int width = 800) {
