@@ -260,6 +260,8 @@ const std::vector<CallInfo>& table() {
       ROW(glIsTexture, "u", kNotCompiled),
       ROW(glTexImage1D, "eixiieeV*", kNone),
       ROW(glTexImage2D, "eixiiieeV*", kNone),
+      ROW(gluBuild1DMipmaps, "exieeV*", kNone),
+      ROW(gluBuild2DMipmaps, "exiieeV*", kNone),
       ROW(glTexSubImage1D, "eiiieeV*", kNone),
       ROW(glTexSubImage2D, "eiiiiieeV*", kNone),
       ROW(glCopyTexImage1D, "eieiiii", kNone),

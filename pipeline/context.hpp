@@ -226,6 +226,13 @@ class Context {
                     GLenum format, GLenum type, const void* pixels);
   void glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
                        const void* pixels);
+  // The GLU helpers (docs/arithmetic.md A28): every level from the image halved in its own
+  // type as SGI's GLU 1.3 does; 0, or GLU_INVALID_ENUM / GLU_INVALID_VALUE (then no level
+  // is specified). Power-of-two sizes only (GLU would first scale others with gluScaleImage).
+  GLint gluBuild1DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLenum format, GLenum type,
+                          const void* data);
+  GLint gluBuild2DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLsizei height, GLenum format,
+                          GLenum type, const void* data);
   void glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
                        GLenum format, GLenum type, const void* pixels);
   void glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
@@ -428,6 +435,8 @@ class Context {
                       GLsizei height, GLint border);
   void copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                           GLsizei width, GLsizei height);
+  GLint build_mipmaps(GLenum target, int dims, GLint internalformat, int width, int height, GLenum format,
+                      GLenum type, const void* data);
   void store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
                     const std::vector<double>* depth);
   TextureLevel* sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,

@@ -9,6 +9,7 @@
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
+#include "stages/glu_mipmaps.hpp"
 #include "stages/pixel_pack.hpp"
 #include "stages/texture_sample.hpp"
 
@@ -222,6 +223,64 @@ void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLs
   PASSIM_ENTRY(target, level, internalformat, width, height, border, format, type,
                image_arg(pixels, width, height, format, type))
   tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
+}
+
+GLint Context::gluBuild1DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLenum format, GLenum type,
+                                 const void* data) {
+  PASSIM_ENTRY_RET(0, target, internalformat, width, format, type, image_arg(data, width, 1, format, type))
+  return build_mipmaps(target, 1, internalformat, width, 1, format, type, data);
+}
+
+GLint Context::gluBuild2DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLsizei height, GLenum format,
+                                 GLenum type, const void* data) {
+  PASSIM_ENTRY_RET(0, target, internalformat, width, height, format, type, image_arg(data, width, height, format, type))
+  return build_mipmaps(target, 2, internalformat, width, height, format, type, data);
+}
+
+GLint Context::build_mipmaps(GLenum target, int dims, GLint internalformat, int width, int height, GLenum format,
+                             GLenum type, const void* data) {
+  constexpr GLint kGluInvalidEnum = 100900, kGluInvalidValue = 100901;  // GLU 1.3, glu.h
+  const char* name = dims == 1 ? "gluBuild1DMipmaps" : "gluBuild2DMipmaps";
+  if (width < 1 || height < 1) return kGluInvalidValue;
+  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) return kGluInvalidEnum;
+  if (!(is_color_pixel_format(format) || format == GL_DEPTH_COMPONENT) || !is_pixel_type(type)) {
+    warn_once(fmt::format("{}: format {} with type {} is not modelled (GLU_INVALID_ENUM returned)", name,
+                          enum_name(format), enum_name(type)));
+    return kGluInvalidEnum;
+  }
+  if (!is_power_of_two(width) || !is_power_of_two(height)) {
+    warn_once(fmt::format("{}: a {}x{} image would first be scaled by gluScaleImage, which is not modelled "
+                          "(GLU_INVALID_VALUE returned, no level specified)", name, width, height));
+    return kGluInvalidValue;
+  }
+  if (!data) {
+    warn_once(fmt::format("{} without data: GLU_INVALID_VALUE returned", name));
+    return kGluInvalidValue;
+  }
+  const int n = format_components(format);
+  std::vector<double> image;
+  unpack_elements(data, width, height, format, type, pixel_store_.unpack, image);
+  // GLU's closest fit: an image larger than MAX_TEXTURE_SIZE loses its top levels.
+  const int max = profile_.limits.max_texture_size;
+  int w = width, h = height;
+  auto halve = [&] {
+    image = glu_halve_image(image, w, h, n, type);
+    w = std::max(1, w / 2);
+    h = std::max(1, h / 2);
+  };
+  while (w > max || h > max) halve();
+  // Its own images are tightly packed; the application's unpack modes are restored after.
+  const PixelStore application = pixel_store_.unpack;
+  pixel_store_.unpack = PixelStore{};
+  pixel_store_.unpack.alignment = 1;
+  for (int level = 0;; ++level) {
+    const std::vector<std::byte> bytes = pack_elements(image, type);
+    tex_image(target, dims, level, internalformat, w, h, 0, format, type, bytes.data());
+    if (w == 1 && h == 1) break;
+    halve();
+  }
+  pixel_store_.unpack = application;
+  return 0;
 }
 
 void Context::reduced_size(int dims, int& width, int& height) const {

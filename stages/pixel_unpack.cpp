@@ -134,13 +134,19 @@ void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum 
   });
 }
 
+void unpack_elements(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s,
+                     std::vector<double>& out) {
+  const std::size_t n = static_cast<std::size_t>(format_components(format));
+  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * n, 0.0);
+  for_each_group(data, width, height, format, type, s, [&](int x, int y, const std::byte* p, int, int size) {
+    const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * n;
+    for (std::size_t k = 0; k < n; ++k) out[at + k] = element(p + k * static_cast<std::size_t>(size), type, s.swap_bytes, false);
+  });
+}
+
 void unpack_indices(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s,
                     std::vector<double>& out) {
-  out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0.0);
-  for_each_group(data, width, height, format, type, s, [&](int x, int y, const std::byte* p, int, int) {
-    out[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-        element(p, type, s.swap_bytes, false);
-  });
+  unpack_elements(data, width, height, format, type, s, out);  // one element per group
 }
 
 void unpack_depth(const void* data, int width, int height, GLenum type, const PixelStore& s, std::vector<double>& out) {

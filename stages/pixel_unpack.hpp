@@ -40,6 +40,10 @@ std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const
 // Rows bottom first, as GL images. Colour formats only (not DEPTH or STENCIL or INDEX).
 void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& store,
                  std::vector<Rgba>& out);
+// The elements of width x height groups as stored (no Table 2.6 conversion; FLOAT as its
+// value), format_components(format) per group, rows bottom first.
+void unpack_elements(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& store,
+                     std::vector<double>& out);
 // Unpacks STENCIL_INDEX or COLOR_INDEX data into one index per pixel (§3.6.4): integer types
 // keep their integer value, FLOAT its value (a fixed-point index with a fraction).
 void unpack_indices(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& store,
