@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -371,16 +372,32 @@ void FragmentOps::process(FragmentSpan& span) {
       // Factors 0 and 1 on codes of one width: the same results in integers. A channel
       // without bits is not written, so it needs no value.
       const bool src_one = ops.blend_src == GL_ONE, dst_one = ops.blend_dst == GL_ONE;
+      bool write[4];
+      std::uint32_t max[4];
+      for (int k = 0; k < 4; ++k) {
+        write[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
+        max[k] = max_code(cfg.color_bits[k]);
+      }
       std::uint64_t blended = 0;
-      for (int i = begin; i < end; ++i) {
-        if (!live[i]) continue;
-        ++blended;
-        std::uint16_t* d = dst + 4 * i;
-        const std::uint16_t* s = span.rgba + 4 * i;
-        for (int k = 0; k < 4; ++k)
-          if (ctl.color_mask[k] && cfg.color_bits[k] > 0)
-            d[k] = static_cast<std::uint16_t>(blend_codes_unit_factors(ops.blend_equation, src_one, dst_one, s[k],
-                                                                       d[k], max_code(cfg.color_bits[k])));
+      // One loop per equation, so that the equation's case is chosen once per span.
+      auto blend_loop = [&](auto equation) {
+        for (int i = begin; i < end; ++i) {
+          if (!live[i]) continue;
+          ++blended;
+          std::uint16_t* d = dst + 4 * i;
+          const std::uint16_t* s = span.rgba + 4 * i;
+          for (int k = 0; k < 4; ++k)
+            if (write[k])
+              d[k] = static_cast<std::uint16_t>(
+                  blend_codes_unit_factors(decltype(equation)::value, src_one, dst_one, s[k], d[k], max[k]));
+        }
+      };
+      switch (ops.blend_equation) {
+        case GL_FUNC_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_SUBTRACT>{}); break;
+        case GL_FUNC_REVERSE_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_REVERSE_SUBTRACT>{}); break;
+        case GL_MIN: blend_loop(std::integral_constant<GLenum, GL_MIN>{}); break;
+        case GL_MAX: blend_loop(std::integral_constant<GLenum, GL_MAX>{}); break;
+        default: blend_loop(std::integral_constant<GLenum, GL_FUNC_ADD>{}); break;
       }
       counters.blend_operations += blended;
       counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "pipeline/fixed_point.hpp"
+#include "stages/avx2.hpp"
 
 namespace passim {
 namespace {
@@ -44,17 +45,16 @@ struct Fetch {
   }
 };
 
-// §3.8.4 wrap applied to a coordinate before scaling.
-double wrap_coordinate(double s, GLenum mode, int size) {
+// §3.8.4 wrap applied to a coordinate before scaling; `edge` = 1/(2·size), CLAMP_TO_EDGE's limit.
+inline double wrap_coordinate(double s, GLenum mode, double edge) {
   switch (mode) {
     case GL_REPEAT: return s - floor_exact(s);
-    case GL_CLAMP_TO_EDGE: {
-      const double lo = 1.0 / (2.0 * size), hi = 1.0 - lo;
-      return std::clamp(s, lo, hi);
-    }
+    case GL_CLAMP_TO_EDGE: return std::clamp(s, edge, 1.0 - edge);
     default: return std::clamp(s, 0.0, 1.0);  // GL_CLAMP
   }
 }
+inline double edge_of(int size) { return 1.0 / (2.0 * size); }
+double wrap_coordinate(double s, GLenum mode, int size) { return wrap_coordinate(s, mode, edge_of(size)); }
 
 int wrap_index(int i, GLenum mode, int size) {
   if (mode == GL_REPEAT) {
@@ -92,12 +92,14 @@ bool compares(const TextureObject& tex, const TextureLevel& level) {
 }
 
 // §3.8.5: i = floor(u), with s = 1 giving W − 1.
+inline int nearest_index(double s, GLenum mode, double edge, int size) {
+  const double u = wrap_coordinate(s, mode, edge) * size;
+  return wrap_index(std::min(static_cast<int>(floor_exact(u)), size - 1), mode, size);
+}
 void nearest_ij(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t, int& i, int& j) {
   const int w = level.width - 2 * level.border, h = dims == 2 ? level.height - 2 * level.border : 1;
-  const double u = wrap_coordinate(s, tex.wrap_s, w) * w;
-  const double v = dims == 2 ? wrap_coordinate(t, tex.wrap_t, h) * h : 0.0;
-  i = wrap_index(std::min(static_cast<int>(floor_exact(u)), w - 1), tex.wrap_s, w);
-  j = dims == 2 ? wrap_index(std::min(static_cast<int>(floor_exact(v)), h - 1), tex.wrap_t, h) : 0;
+  i = nearest_index(s, tex.wrap_s, edge_of(w), w);
+  j = dims == 2 ? nearest_index(t, tex.wrap_t, edge_of(h), h) : 0;
 }
 
 TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int dims, GLenum filter, double s,
@@ -175,62 +177,154 @@ bool texture_needs_lod(const TextureObject& tex) {
   return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
 }
 
-LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims) {
+LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values) {
   LinearLevel l;
-  l.values = level.values().data();
+  l.values = with_values ? level.values().data() : nullptr;
   l.dims = dims;
   l.width = level.width;
   l.border = level.border;
   l.row_border = row_border(level);
   l.w = level.width - 2 * level.border;
   l.h = dims == 2 ? level.height - 2 * level.border : 1;
+  l.edge_s = edge_of(l.w);
+  l.edge_t = edge_of(l.h);
   l.bits_per_texel = level.bits_per_texel();
   l.wrap_s = tex.wrap_s;
   l.wrap_t = tex.wrap_t;
   return l;
 }
 
-bool linear_stored_footprint(const LinearLevel& l, double s, double t, TexelValue& out, Counters& counters) {
+namespace {
+
+// The footprint of (s, t) on a LinearLevel, as filter_level finds it: wrap, scale, the lower
+// texel, the fractions; false when the coordinates are not finite or a texel lies beyond the
+// stored ones (the border colour: the general path). 1D: t01 = t00, t11 = t10, beta = 0.
+struct Footprint {
+  const double *t00, *t10, *t01, *t11;
+  double alpha, beta;
+};
+inline bool linear_footprint(const LinearLevel& l, double s, double t, Footprint& f) {
   if (!std::isfinite(s) || !std::isfinite(t)) return false;
   const int b = l.border, w = l.w, h = l.h, dims = l.dims;
-  // As filter_level: wrap, scale, the lower texel and the fractions.
-  const double uu = wrap_coordinate(s, l.wrap_s, w) * w - 0.5;
-  const double vv = dims == 2 ? wrap_coordinate(t, l.wrap_t, h) * h - 0.5 : 0.0;
+  const double uu = wrap_coordinate(s, l.wrap_s, l.edge_s) * w - 0.5;
+  const double vv = dims == 2 ? wrap_coordinate(t, l.wrap_t, l.edge_t) * h - 0.5 : 0.0;
   const double fu = floor_exact(uu), fv = dims == 2 ? floor_exact(vv) : 0.0;
   const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
-  const double alpha = uu - fu, beta = vv - fv;
+  f.alpha = uu - fu;
+  f.beta = vv - fv;
   const int i[2] = {wrap_index(i0, l.wrap_s, w), wrap_index(i0 + 1, l.wrap_s, w)};
   const int j[2] = {dims == 2 ? wrap_index(j0, l.wrap_t, h) : 0, dims == 2 ? wrap_index(j0 + 1, l.wrap_t, h) : 0};
-  // Only stored texels (the border colour takes the general path).
   if (i[0] < -b || i[1] >= w + b || i[1] < -b || i[0] >= w + b) return false;
   if (dims == 2 && (j[0] < -b || j[1] >= h + b || j[1] < -b || j[0] >= h + b)) return false;
   auto at = [&](int x, int y) {
     return l.values + 4 * (static_cast<std::size_t>(y + l.row_border) * static_cast<std::size_t>(l.width) +
                            static_cast<std::size_t>(x + b));
   };
-  double r[4];
-  if (dims == 1) {
-    const double *a = at(i[0], 0), *c = at(i[1], 0);
-    for (int k = 0; k < 4; ++k) r[k] = lerp_1d(alpha, a[k], c[k]);
-  } else {
-    const double *t00 = at(i[0], j[0]), *t10 = at(i[1], j[0]), *t01 = at(i[0], j[1]), *t11 = at(i[1], j[1]);
-    for (int k = 0; k < 4; ++k) r[k] = lerp_2d(alpha, beta, t00[k], t10[k], t01[k], t11[k]);
-  }
-  const std::uint64_t texels = dims == 2 ? 4 : 2;
-  counters.texels_fetched += texels;
-  counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
-  out = {r[0], r[1], r[2], r[3]};
+  f.t00 = at(i[0], j[0]);
+  f.t10 = at(i[1], j[0]);
+  f.t01 = dims == 2 ? at(i[0], j[1]) : f.t00;
+  f.t11 = dims == 2 ? at(i[1], j[1]) : f.t10;
   return true;
 }
 
-std::int64_t nearest_texel_index(const TextureObject& tex, const TextureLevel& level, int dims, double s, double t) {
-  if (!std::isfinite(s)) s = 0.0;  // as sample_texture
-  if (!std::isfinite(t)) t = 0.0;
-  int i = 0, j = 0;
-  nearest_ij(tex, level, dims, s, t, i, j);
-  const int b = level.border, bj = row_border(level), w = level.width - 2 * b, h = level.height - 2 * bj;
-  if (i < -b || i >= w + b || j < -bj || j >= h + bj) return -1;
-  return static_cast<std::int64_t>(j + bj) * level.width + (i + b);
+void count_footprint(const LinearLevel& l, Counters& counters) {
+  const std::uint64_t texels = l.dims == 2 ? 4 : 2;
+  counters.texels_fetched += texels;
+  counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
+}
+
+}  // namespace
+
+std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpan& span,
+                                         const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
+                                         std::uint8_t* general, Counters& counters) {
+  std::uint64_t filtered = 0;
+  for (int i = 0; i < span.count; ++i) {
+    Footprint f;
+    general[i] = !linear_footprint(l, span.s[i], span.t[i], f);
+    if (general[i]) continue;
+    ++filtered;
+    count_footprint(l, counters);
+    std::uint16_t* c = span.rgba + 4 * i;
+    for (int k = 0; k < 4; ++k) {
+      const double r = l.dims == 2 ? lerp_2d(f.alpha, f.beta, f.t00[k], f.t10[k], f.t01[k], f.t11[k])
+                                   : lerp_1d(f.alpha, f.t00[k], f.t10[k]);
+      if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(float_to_fixed(r, bits[static_cast<std::size_t>(k)]));
+    }
+  }
+  return filtered;
+}
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+// The same operations in the same order on the four components at once: the weights as
+// lerp_1d/lerp_2d form them (products of (1−α), α, (1−β), β), each times its texel, summed
+// left to right (no FMA: -ffp-contract=off, and mul/add intrinsics), then float_to_fixed.
+__attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const LinearLevel& l, const FragmentSpan& span,
+                                                                       const std::array<int, 4>& bits,
+                                                                       const std::array<bool, 4>& replace,
+                                                                       std::uint8_t* general, Counters& counters) {
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
+  const __m256d scale = _mm256_setr_pd(static_cast<double>(max_code(bits[0])), static_cast<double>(max_code(bits[1])),
+                                       static_cast<double>(max_code(bits[2])), static_cast<double>(max_code(bits[3])));
+  std::uint64_t filtered = 0;
+  for (int i = 0; i < span.count; ++i) {
+    Footprint f;
+    general[i] = !linear_footprint(l, span.s[i], span.t[i], f);
+    if (general[i]) continue;
+    ++filtered;
+    count_footprint(l, counters);
+    __m256d r;
+    if (l.dims == 2) {
+      const double a = f.alpha, b = f.beta;
+      const __m256d w00 = _mm256_set1_pd((1.0 - a) * (1.0 - b)), w10 = _mm256_set1_pd(a * (1.0 - b));
+      const __m256d w01 = _mm256_set1_pd((1.0 - a) * b), w11 = _mm256_set1_pd(a * b);
+      r = _mm256_mul_pd(w00, _mm256_loadu_pd(f.t00));
+      r = _mm256_add_pd(r, _mm256_mul_pd(w10, _mm256_loadu_pd(f.t10)));
+      r = _mm256_add_pd(r, _mm256_mul_pd(w01, _mm256_loadu_pd(f.t01)));
+      r = _mm256_add_pd(r, _mm256_mul_pd(w11, _mm256_loadu_pd(f.t11)));
+    } else {
+      r = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(1.0 - f.alpha), _mm256_loadu_pd(f.t00)),
+                        _mm256_mul_pd(_mm256_set1_pd(f.alpha), _mm256_loadu_pd(f.t10)));
+    }
+    // float_to_fixed: clamp_nan_low to [0, 1], times 2^bits − 1, + 0.5, truncated.
+    const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
+    alignas(16) std::int32_t codes[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm256_cvttpd_epi32(x));
+    std::uint16_t* c = span.rgba + 4 * i;
+    for (int k = 0; k < 4; ++k)
+      if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(codes[k]);
+  }
+  return filtered;
+}
+#endif
+
+std::uint64_t linear_replace_span(const LinearLevel& l, const FragmentSpan& span, const std::array<int, 4>& bits,
+                                  const std::array<bool, 4>& replace, std::uint8_t* general, Counters& counters) {
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+  if (cpu_has_avx2()) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
+#endif
+  return linear_replace_span_scalar(l, span, bits, replace, general, counters);
+}
+
+std::uint64_t nearest_replace_span(const LinearLevel& l, const std::uint16_t* codes, const FragmentSpan& span,
+                                   const std::array<bool, 4>& replace, std::uint8_t* general) {
+  const int b = l.border, bj = l.row_border, w = l.w, h = l.h;
+  std::uint64_t fetched = 0;
+  for (int n = 0; n < span.count; ++n) {
+    const double s = std::isfinite(span.s[n]) ? span.s[n] : 0.0;  // as sample_texture
+    const double t = std::isfinite(span.t[n]) ? span.t[n] : 0.0;
+    const int i = nearest_index(s, l.wrap_s, l.edge_s, w);
+    const int j = l.dims == 2 ? nearest_index(t, l.wrap_t, l.edge_t, h) : 0;
+    general[n] = i < -b || i >= w + b || j < -bj || j >= h + bj;
+    if (general[n]) continue;
+    ++fetched;
+    const std::uint16_t* texel =
+        codes + 4 * (static_cast<std::size_t>(j + bj) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(i + b));
+    std::uint16_t* c = span.rgba + 4 * n;
+    for (int k = 0; k < 4; ++k)
+      if (replace[static_cast<std::size_t>(k)]) c[k] = texel[k];
+  }
+  return fetched;
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,

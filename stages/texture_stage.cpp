@@ -51,19 +51,13 @@ void TextureStage::process(FragmentSpan& span) {
   if (nearest_replace(tex, base, setup_.env_mode)) {
     const std::vector<std::uint16_t>& codes = base.codes_at(bits);
     const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
-    std::uint64_t fetched = 0;
-    for (int i = 0; i < span.count; ++i) {
-      const std::int64_t p = nearest_texel_index(tex, base, setup_.dims, span.s[i], span.t[i]);
-      std::uint16_t* c = span.rgba + 4 * i;
-      if (p < 0) {  // the border colour: the general arithmetic (λ chooses nothing: both filters NEAREST)
-        general(i);
-        continue;
-      }
-      ++fetched;
-      const std::uint16_t* t = &codes[4 * static_cast<std::size_t>(p)];
-      if (color) c[0] = t[0], c[1] = t[1], c[2] = t[2];
-      if (alpha) c[3] = t[3];
-    }
+    // span.live is the per-fragment operations' scratch; they set it afresh.
+    const std::uint64_t fetched = nearest_replace_span(linear_level(tex, base, setup_.dims, false), codes.data(), span,
+                                                       {color, color, color, alpha}, span.live);
+    // The border colour: the general arithmetic (λ chooses nothing: both filters NEAREST).
+    if (fetched < static_cast<std::uint64_t>(span.count))
+      for (int i = 0; i < span.count; ++i)
+        if (span.live[i]) general(i);
     fast_path_fragments += fetched;
     counters.texture_lookups += fetched;
     counters.texels_fetched += fetched;
@@ -72,29 +66,18 @@ void TextureStage::process(FragmentSpan& span) {
     return;
   }
   // Fast path: LINEAR for both filters (so λ chooses nothing), no comparison, REPLACE. The
-  // filter is sample_texture's (linear_stored_footprint shares its expressions); REPLACE
+  // filter is sample_texture's (linear_replace_span shares its expressions); REPLACE
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
   // reaches the border colour, or whose coordinates are not finite, take the general path.
   const bool fast_linear = !general_path_only && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
                            setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
   if (fast_linear) {
-    std::uint64_t filtered = 0;
-    const LinearLevel level = linear_level(tex, base, setup_.dims);
-    for (int i = 0; i < span.count; ++i) {
-      TexelValue tv;
-      if (!linear_stored_footprint(level, span.s[i], span.t[i], tv, counters)) {
-        general(i);
-        continue;
-      }
-      ++filtered;
-      std::uint16_t* c = span.rgba + 4 * i;
-      if (color) {
-        c[0] = static_cast<std::uint16_t>(float_to_fixed(tv.r, bits[0]));
-        c[1] = static_cast<std::uint16_t>(float_to_fixed(tv.g, bits[1]));
-        c[2] = static_cast<std::uint16_t>(float_to_fixed(tv.b, bits[2]));
-      }
-      if (alpha) c[3] = static_cast<std::uint16_t>(float_to_fixed(tv.a, bits[3]));
-    }
+    // span.live is the per-fragment operations' scratch; they set it afresh.
+    const std::uint64_t filtered = linear_replace_span(linear_level(tex, base, setup_.dims), span, bits,
+                                                       {color, color, color, alpha}, span.live, counters);
+    if (filtered < static_cast<std::uint64_t>(span.count))
+      for (int i = 0; i < span.count; ++i)
+        if (span.live[i]) general(i);
     fast_path_fragments += filtered;
     counters.texture_lookups += filtered;
     next_->process(span);
