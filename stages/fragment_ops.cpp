@@ -21,7 +21,10 @@ bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored) {
   }
 }
 
-double blend_component(GLenum equation, double s, double d, double sf, double df, int product_bits) {
+namespace {
+// blend_component, inlined into the per-fragment loop (the exported function calls it).
+[[gnu::always_inline]] inline double blend_one(GLenum equation, double s, double d, double sf, double df,
+                                               int product_bits) {
   auto product = [product_bits](double c, double f) { return product_bits > 0 ? quantise(c * f, product_bits) : c * f; };
   switch (equation) {
     case GL_FUNC_SUBTRACT: return product(s, sf) - product(d, df);
@@ -30,6 +33,11 @@ double blend_component(GLenum equation, double s, double d, double sf, double df
     case GL_MAX: return std::max(s, d);
     default: return product(s, sf) + product(d, df);  // GL_FUNC_ADD
   }
+}
+}  // namespace
+
+double blend_component(GLenum equation, double s, double d, double sf, double df, int product_bits) {
+  return blend_one(equation, s, d, sf, df, product_bits);
 }
 
 std::uint32_t blend_codes_unit_factors(GLenum equation, bool src_one, bool dst_one, std::uint32_t s,
@@ -76,7 +84,8 @@ std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_
 namespace {
 
 // §4.1.6 Table 4.1-4.2: the factor for one component c (0-3) of a fragment.
-double blend_factor(GLenum f, int c, const double src[4], const double dst[4], const Vec4& constant) {
+[[gnu::always_inline]] inline double blend_factor(GLenum f, int c, const double src[4], const double dst[4],
+                                                  const Vec4& constant) {
   switch (f) {
     case GL_ZERO: return 0.0;
     case GL_ONE: return 1.0;
@@ -427,7 +436,7 @@ void FragmentOps::process(FragmentSpan& span) {
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
           const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
           const int product_bits = products_rounded ? cfg.color_bits[k] : 0;
-          out[k] = float_to_fixed(blend_component(ops.blend_equation, src[k], dcol[k], sf, df, product_bits),
+          out[k] = float_to_fixed(blend_one(ops.blend_equation, src[k], dcol[k], sf, df, product_bits),
                                   cfg.color_bits[k]);
         }
         ++counters.blend_operations;
