@@ -421,6 +421,8 @@ void FragmentOps::process(FragmentSpan& span) {
       dst_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
     }
     const bool products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
+    bool written[4];  // the masked write keeps only these: the others need no blend
+    for (int k = 0; k < 4; ++k) written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
@@ -433,6 +435,7 @@ void FragmentOps::process(FragmentSpan& span) {
           dcol[k] = dst_values[k] ? dst_values[k][d[k]] : kOne;  // no alpha bits: Ad = 1
         }
         for (int k = 0; k < 4; ++k) {
+          if (!written[k]) continue;
           const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
           const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
           const int product_bits = products_rounded ? cfg.color_bits[k] : 0;
@@ -450,7 +453,7 @@ void FragmentOps::process(FragmentSpan& span) {
         }
       }
       for (int k = 0; k < 4; ++k)
-        if (ctl.color_mask[k] && cfg.color_bits[k] > 0) d[k] = static_cast<std::uint16_t>(out[k]);
+        if (written[k]) d[k] = static_cast<std::uint16_t>(out[k]);
     }
   }
 }
