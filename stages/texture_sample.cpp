@@ -233,11 +233,12 @@ void count_footprint(const LinearLevel& l, Counters& counters) {
   counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
 }
 
-}  // namespace
-
-std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpan& span,
-                                         const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
-                                         std::uint8_t* general, Counters& counters) {
+// The span loop both kernels share: each fragment's footprint, or general[i] = 1; `filter`
+// writes the codes of one fragment from its footprint.
+template <class Filter>
+[[gnu::always_inline]] inline std::uint64_t for_each_footprint(const LinearLevel& l, const FragmentSpan& span,
+                                                               std::uint8_t* general, Counters& counters,
+                                                               Filter&& filter) {
   std::uint64_t filtered = 0;
   for (int i = 0; i < span.count; ++i) {
     Footprint f;
@@ -245,14 +246,23 @@ std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpa
     if (general[i]) continue;
     ++filtered;
     count_footprint(l, counters);
-    std::uint16_t* c = span.rgba + 4 * i;
+    filter(f, span.rgba + 4 * i);
+  }
+  return filtered;
+}
+
+}  // namespace
+
+std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpan& span,
+                                         const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
+                                         std::uint8_t* general, Counters& counters) {
+  return for_each_footprint(l, span, general, counters, [&](const Footprint& f, std::uint16_t* c) {
     for (int k = 0; k < 4; ++k) {
       const double r = l.dims == 2 ? lerp_2d(f.alpha, f.beta, f.t00[k], f.t10[k], f.t01[k], f.t11[k])
                                    : lerp_1d(f.alpha, f.t00[k], f.t10[k]);
       if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(float_to_fixed(r, bits[static_cast<std::size_t>(k)]));
     }
-  }
-  return filtered;
+  });
 }
 
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
@@ -266,13 +276,8 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lin
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
   const __m256d scale = _mm256_setr_pd(static_cast<double>(max_code(bits[0])), static_cast<double>(max_code(bits[1])),
                                        static_cast<double>(max_code(bits[2])), static_cast<double>(max_code(bits[3])));
-  std::uint64_t filtered = 0;
-  for (int i = 0; i < span.count; ++i) {
-    Footprint f;
-    general[i] = !linear_footprint(l, span.s[i], span.t[i], f);
-    if (general[i]) continue;
-    ++filtered;
-    count_footprint(l, counters);
+  return for_each_footprint(l, span, general, counters, [&](const Footprint& f, std::uint16_t* c)
+                                                            __attribute__((target("avx2"))) {
     __m256d r;
     if (l.dims == 2) {
       const double a = f.alpha, b = f.beta;
@@ -290,11 +295,9 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lin
     const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
     alignas(16) std::int32_t codes[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm256_cvttpd_epi32(x));
-    std::uint16_t* c = span.rgba + 4 * i;
     for (int k = 0; k < 4; ++k)
       if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(codes[k]);
-  }
-  return filtered;
+  });
 }
 #endif
 

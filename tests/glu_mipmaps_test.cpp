@@ -100,14 +100,9 @@ TEST(GluMipmaps, ImagesLargerThanTheLimitLoseTheirTopLevels) {
 }
 
 TEST(GluMipmaps, RecordedCallReplaysToTheSameLevels) {
-  const FramebufferConfig cfg = test::small_config(4, 4);
-  Context original(cfg);
-  std::ostringstream text;
-  TraceWriter writer(text);
-  TraceSettings settings;
-  settings.framebuffer = cfg;
-  writer.write_header(settings);
-  original.set_call_sink(&writer);
+  Context original(test::small_config(4, 4));
+  test::Recording recording(original);
+  const std::ostringstream& text = recording.text;
   const GLubyte image[8] = {10, 20, 30, 41, 50, 60, 70, 80};
   original.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   EXPECT_EQ(original.gluBuild2DMipmaps(GL_TEXTURE_2D, GL_LUMINANCE8, 4, 2, GL_LUMINANCE, GL_UNSIGNED_BYTE, image), 0);

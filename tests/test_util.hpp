@@ -3,7 +3,10 @@
 #include <array>
 #include <cstdint>
 
+#include <sstream>
+
 #include "pipeline/context.hpp"
+#include "pipeline/trace.hpp"
 
 namespace passim::test {
 
@@ -36,5 +39,17 @@ inline void window_projection(Context& ctx) {
   ctx.glMatrixMode(GL_MODELVIEW);
   ctx.glLoadIdentity();
 }
+
+// Records every call made on `ctx` from now on as a .pass trace in `text`.
+struct Recording {
+  explicit Recording(Context& ctx) {
+    TraceSettings settings;
+    settings.framebuffer = ctx.config();
+    writer.write_header(settings);
+    ctx.set_call_sink(&writer);
+  }
+  std::ostringstream text;
+  TraceWriter writer{text};
+};
 
 }  // namespace passim::test

@@ -188,14 +188,10 @@ TEST(TraceRecord, RecordedProgramReplaysToIdenticalBitsAndCounters) {
   for (int bits : {8, 12}) {
     FramebufferConfig cfg = test::small_config(32, 32, bits);
     Context original(cfg);
-    std::ostringstream text;
-    TraceWriter writer(text);
-    TraceSettings settings;
-    settings.framebuffer = cfg;
-    writer.write_header(settings);
-    original.set_call_sink(&writer);
+    test::Recording recording(original);
+    const std::ostringstream& text = recording.text;
     program(original);
-    writer.output("final", "color", "GL_FRONT");
+    recording.writer.output("final", "color", "GL_FRONT");
 
     ReplayResult r = replay(text.str());
     EXPECT_EQ(r.context->framebuffer().color[0].rgba, original.framebuffer().color[0].rgba) << text.str();
