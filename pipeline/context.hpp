@@ -226,6 +226,8 @@ class Context {
                     GLenum format, GLenum type, const void* pixels);
   void glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
                        const void* pixels);
+  void glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
+                       GLenum format, GLenum type, const void* pixels);
   // The GLU helpers (docs/arithmetic.md A28): every level from the image halved in its own
   // type as SGI's GLU 1.3 does; 0, or GLU_INVALID_ENUM / GLU_INVALID_VALUE (then no level
   // is specified). Power-of-two sizes only (GLU would first scale others with gluScaleImage).
@@ -233,8 +235,6 @@ class Context {
                           const void* data);
   GLint gluBuild2DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLsizei height, GLenum format,
                           GLenum type, const void* data);
-  void glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
-                       GLenum format, GLenum type, const void* pixels);
   void glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
                         GLint border);
   void glCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
@@ -472,7 +472,6 @@ class Context {
   void set_tex_parameter(GLenum target, GLenum pname, const double* v);
   void set_tex_env(GLenum target, GLenum pname, const double* v);
   void set_tex_gen(GLenum coord, GLenum pname, const double* v);
-  // Chooses the stages (texture, fog) the next primitive's fragments pass before the per-fragment ops.
   // The stage setup of a primitive drawn now (and its options' texture and fog parts);
   // prepare_fragment_stages connects this thread's stages to it, fragment_sink() their first.
   FragmentStagesSetup fragment_stages_setup(TriangleOptions& options);

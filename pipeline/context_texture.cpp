@@ -752,7 +752,6 @@ FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   // The stages a primitive's fragments pass through: [texture] -> [fog] -> per-fragment ops.
   FragmentStagesSetup setup;
   setup.ops = fragment_ops_input();
-  setup.fragment_bits = fragment_bits_;
   setup.target = RasterTarget{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
                               fb_.config.depth_bits, fragment_bits_};
   setup.fog = options.fog = fog_.enabled;

@@ -18,9 +18,8 @@ struct FragmentStagesSetup {
   TextureStageSetup texture_setup;
   bool fog = false;
   FogState fog_state;
-  std::array<int, 4> fragment_bits{8, 8, 8, 8};
   FragmentOpsInput ops;
-  RasterTarget target;
+  RasterTarget target;  // its color_bits are the fragment colour widths
   bool operator==(const FragmentStagesSetup&) const = default;
 };
 
@@ -35,7 +34,7 @@ struct FragmentStages {
   void connect(const FragmentStagesSetup& s) {
     ops.configure(s.ops);
     FragmentSink& after_texture = s.fog ? static_cast<FragmentSink&>(fog) : static_cast<FragmentSink&>(ops);
-    if (s.fog) fog.configure(s.fog_state, s.fragment_bits, ops);
+    if (s.fog) fog.configure(s.fog_state, s.target.color_bits, ops);
     if (s.texture) texture.configure(s.texture_setup, after_texture);
     first = s.texture ? static_cast<FragmentSink*>(&texture) : &after_texture;
   }
