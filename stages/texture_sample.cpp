@@ -177,8 +177,8 @@ bool texture_needs_lod(const TextureObject& tex) {
   return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
 }
 
-LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values) {
-  LinearLevel l;
+LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values) {
+  LevelGeometry l;
   l.values = with_values ? level.values().data() : nullptr;
   l.dims = dims;
   l.width = level.width;
@@ -196,14 +196,14 @@ LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, in
 
 namespace {
 
-// The footprint of (s, t) on a LinearLevel, as filter_level finds it: wrap, scale, the lower
+// The footprint of (s, t) on a LevelGeometry, as filter_level finds it: wrap, scale, the lower
 // texel, the fractions; false when the coordinates are not finite or a texel lies beyond the
 // stored ones (the border colour: the general path). 1D: t01 = t00, t11 = t10, beta = 0.
 struct Footprint {
   const double *t00, *t10, *t01, *t11;
   double alpha, beta;
 };
-inline bool linear_footprint(const LinearLevel& l, double s, double t, Footprint& f) {
+inline bool linear_footprint(const LevelGeometry& l, double s, double t, Footprint& f) {
   if (!std::isfinite(s) || !std::isfinite(t)) return false;
   const int b = l.border, w = l.w, h = l.h, dims = l.dims;
   const double uu = wrap_coordinate(s, l.wrap_s, l.edge_s) * w - 0.5;
@@ -227,7 +227,7 @@ inline bool linear_footprint(const LinearLevel& l, double s, double t, Footprint
   return true;
 }
 
-void count_footprint(const LinearLevel& l, Counters& counters) {
+void count_footprint(const LevelGeometry& l, Counters& counters) {
   const std::uint64_t texels = l.dims == 2 ? 4 : 2;
   counters.texels_fetched += texels;
   counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
@@ -236,7 +236,7 @@ void count_footprint(const LinearLevel& l, Counters& counters) {
 // The span loop both kernels share: each fragment's footprint, or general[i] = 1; `filter`
 // writes the codes of one fragment from its footprint.
 template <class Filter>
-[[gnu::always_inline]] inline std::uint64_t for_each_footprint(const LinearLevel& l, const FragmentSpan& span,
+[[gnu::always_inline]] inline std::uint64_t for_each_footprint(const LevelGeometry& l, const FragmentSpan& span,
                                                                std::uint8_t* general, Counters& counters,
                                                                Filter&& filter) {
   std::uint64_t filtered = 0;
@@ -253,7 +253,7 @@ template <class Filter>
 
 }  // namespace
 
-std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpan& span,
+std::uint64_t linear_replace_span_scalar(const LevelGeometry& l, const FragmentSpan& span,
                                          const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
                                          std::uint8_t* general, Counters& counters) {
   return for_each_footprint(l, span, general, counters, [&](const Footprint& f, std::uint16_t* c) {
@@ -269,7 +269,7 @@ std::uint64_t linear_replace_span_scalar(const LinearLevel& l, const FragmentSpa
 // The same operations in the same order on the four components at once: the weights as
 // lerp_1d/lerp_2d form them (products of (1−α), α, (1−β), β), each times its texel, summed
 // left to right (no FMA: -ffp-contract=off, and mul/add intrinsics), then float_to_fixed.
-__attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const LinearLevel& l, const FragmentSpan& span,
+__attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const LevelGeometry& l, const FragmentSpan& span,
                                                                        const std::array<int, 4>& bits,
                                                                        const std::array<bool, 4>& replace,
                                                                        std::uint8_t* general, Counters& counters) {
@@ -301,7 +301,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lin
 }
 #endif
 
-std::uint64_t linear_replace_span(const LinearLevel& l, const FragmentSpan& span, const std::array<int, 4>& bits,
+std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& span, const std::array<int, 4>& bits,
                                   const std::array<bool, 4>& replace, std::uint8_t* general, Counters& counters) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
   if (cpu_has_avx2()) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
@@ -309,7 +309,7 @@ std::uint64_t linear_replace_span(const LinearLevel& l, const FragmentSpan& span
   return linear_replace_span_scalar(l, span, bits, replace, general, counters);
 }
 
-std::uint64_t nearest_replace_span(const LinearLevel& l, const std::uint16_t* codes, const FragmentSpan& span,
+std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
                                    const std::array<bool, 4>& replace, std::uint8_t* general) {
   const int b = l.border, bj = l.row_border, w = l.w, h = l.h;
   std::uint64_t fetched = 0;

@@ -24,37 +24,35 @@ int texture_complete_levels(const TextureObject& tex, int dims);
 // does not, λ need not be computed.
 bool texture_needs_lod(const TextureObject& tex);
 
-
-// Samples the texture at (s, t) (already divided by q) with level-of-detail λ; `r` is the
-// fragment's r/q for depth comparison. `dims` is 1 or 2.
-// The fast path's LINEAR (TextureStage): the level filtered at (s, t) with the arithmetic of
-// sample_texture, when the coordinates are finite and the footprint is stored texels (no
-// border colour); counts the texels read. False: nothing counted, use sample_texture.
-// LinearLevel holds what is the same for every fragment of a span.
-struct LinearLevel {
+// What the fast paths (TextureStage) need of one level, the same for every fragment of a
+// span: its sizes and border, the wrap modes with CLAMP_TO_EDGE's limits, and (LINEAR) its
+// texel values.
+struct LevelGeometry {
   const double* values = nullptr;  // TextureLevel::values()
   int dims = 1, width = 0, border = 0, row_border = 0, w = 0, h = 1, bits_per_texel = 0;
   double edge_s = 0.0, edge_t = 0.0;  // CLAMP_TO_EDGE's 1/(2w), 1/(2h)
   GLenum wrap_s = 0, wrap_t = 0;
 };
-LinearLevel linear_level(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values = true);
+LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values = true);
 // NEAREST over a span (§3.8.5, the fast path): each fragment's texel after wrapping
 // (non-finite coordinates at 0, as sample_texture); where it is a stored texel, the codes of
 // `codes` (4 per stored texel, TextureLevel::codes_at) that `replace` selects are copied and
 // general[i] = 0; where it is the border colour, general[i] = 1. Returns the texels fetched.
-std::uint64_t nearest_replace_span(const LinearLevel& level, const std::uint16_t* codes, const FragmentSpan& span,
+std::uint64_t nearest_replace_span(const LevelGeometry& level, const std::uint16_t* codes, const FragmentSpan& span,
                                    const std::array<bool, 4>& replace, std::uint8_t* general);
 // Over a span: where the footprint is stored texels, the filtered components `replace`
 // selects become float_to_fixed at `bits` (REPLACE with A4's rounding) and general[i] = 0;
 // elsewhere general[i] = 1 and nothing is written or counted. Returns the fragments filtered.
 // The AVX2 kernel (chosen at run time) and the scalar reference give the same bits
 // (`TextureKernels.LinearReplaceAvx2EqualsScalar`).
-std::uint64_t linear_replace_span(const LinearLevel& level, const FragmentSpan& span, const std::array<int, 4>& bits,
+std::uint64_t linear_replace_span(const LevelGeometry& level, const FragmentSpan& span, const std::array<int, 4>& bits,
                                   const std::array<bool, 4>& replace, std::uint8_t* general, Counters& counters);
-std::uint64_t linear_replace_span_scalar(const LinearLevel& level, const FragmentSpan& span,
+std::uint64_t linear_replace_span_scalar(const LevelGeometry& level, const FragmentSpan& span,
                                          const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
                                          std::uint8_t* general, Counters& counters);
 
+// Samples the texture at (s, t) (already divided by q) with level-of-detail λ; `r` is the
+// fragment's r/q for depth comparison. `dims` is 1 or 2.
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,
                           int last_level, Counters& counters);
 

@@ -52,7 +52,7 @@ void TextureStage::process(FragmentSpan& span) {
     const std::vector<std::uint16_t>& codes = base.codes_at(bits);
     const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
     // span.live is the per-fragment operations' scratch; they set it afresh.
-    const std::uint64_t fetched = nearest_replace_span(linear_level(tex, base, setup_.dims, false), codes.data(), span,
+    const std::uint64_t fetched = nearest_replace_span(level_geometry(tex, base, setup_.dims, false), codes.data(), span,
                                                        {color, color, color, alpha}, span.live);
     // The border colour: the general arithmetic (λ chooses nothing: both filters NEAREST).
     if (fetched < static_cast<std::uint64_t>(span.count))
@@ -73,7 +73,7 @@ void TextureStage::process(FragmentSpan& span) {
                            setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
   if (fast_linear) {
     // span.live is the per-fragment operations' scratch; they set it afresh.
-    const std::uint64_t filtered = linear_replace_span(linear_level(tex, base, setup_.dims), span, bits,
+    const std::uint64_t filtered = linear_replace_span(level_geometry(tex, base, setup_.dims), span, bits,
                                                        {color, color, color, alpha}, span.live, counters);
     if (filtered < static_cast<std::uint64_t>(span.count))
       for (int i = 0; i < span.count; ++i)

@@ -25,7 +25,7 @@ TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
     const int width = w + 2 * border, height = dims == 2 ? h + 2 * border : 1;
     std::vector<double> values(static_cast<std::size_t>(4 * width * height));
     for (double& v : values) v = rng() % 50 == 0 ? odd[rng() % 7] : texel(rng);
-    LinearLevel l;
+    LevelGeometry l;
     l.values = values.data();
     l.dims = dims;
     l.width = width;
