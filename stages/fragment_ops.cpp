@@ -357,6 +357,9 @@ void FragmentOps::process(FragmentSpan& span) {
     if (ctl.color_mask[k]) mask_bits += cfg.color_bits[k];
   int total_bits = cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3];
   const bool same_widths = fragment_bits == cfg.color_bits;
+  // The masked write (§4.2.2) keeps only these channels: the others need no blend.
+  bool written[4];
+  for (int k = 0; k < 4; ++k) written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
   for (ColorBufferId id : *in_.draw_buffers) {
     std::uint16_t* dst = fb_.color[static_cast<int>(id)].rgba.data() + 4 * row_base;
     counters.color_bits_written += alive * static_cast<std::uint64_t>(mask_bits);
@@ -381,12 +384,8 @@ void FragmentOps::process(FragmentSpan& span) {
       // Factors 0 and 1 on codes of one width: the same results in integers. A channel
       // without bits is not written, so it needs no value.
       const bool src_one = ops.blend_src == GL_ONE, dst_one = ops.blend_dst == GL_ONE;
-      bool write[4];
       std::uint32_t max[4];
-      for (int k = 0; k < 4; ++k) {
-        write[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
-        max[k] = max_code(cfg.color_bits[k]);
-      }
+      for (int k = 0; k < 4; ++k) max[k] = max_code(cfg.color_bits[k]);
       std::uint64_t blended = 0;
       // One loop per equation, so that the equation's case is chosen once per span.
       auto blend_loop = [&](auto equation) {
@@ -396,7 +395,7 @@ void FragmentOps::process(FragmentSpan& span) {
           std::uint16_t* d = dst + 4 * i;
           const std::uint16_t* s = span.rgba + 4 * i;
           for (int k = 0; k < 4; ++k)
-            if (write[k])
+            if (written[k])
               d[k] = static_cast<std::uint16_t>(
                   blend_codes_unit_factors(decltype(equation)::value, src_one, dst_one, s[k], d[k], max[k]));
         }
@@ -421,8 +420,6 @@ void FragmentOps::process(FragmentSpan& span) {
       dst_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
     }
     const bool products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
-    bool written[4];  // the masked write keeps only these: the others need no blend
-    for (int k = 0; k < 4; ++k) written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
