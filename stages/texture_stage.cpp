@@ -7,7 +7,12 @@
 namespace passim {
 
 bool TextureStage::general_path_only = false;
-thread_local std::uint64_t TextureStage::fast_path_fragments = 0;
+namespace {
+thread_local std::uint64_t fast_path_fragments = 0;
+}  // namespace
+
+std::uint64_t TextureStage::fast_path_fragments_here() { return fast_path_fragments; }
+void TextureStage::reset_fast_path_fragments_here() { fast_path_fragments = 0; }
 
 namespace {
 // The NEAREST/REPLACE fast path's condition (it reads TextureLevel::codes_at).

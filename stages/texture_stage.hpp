@@ -38,7 +38,8 @@ class TextureStage final : public FragmentSink {
   static bool general_path_only;
   // Fragments the fast paths textured on this thread (for tests; per thread, so that
   // raster lanes do not contend for one counter).
-  static thread_local std::uint64_t fast_path_fragments;
+  static std::uint64_t fast_path_fragments_here();
+  static void reset_fast_path_fragments_here();
 
  private:
   FragmentSink* next_ = nullptr;
