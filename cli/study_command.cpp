@@ -99,10 +99,11 @@ void write_plots(const fs::path& out, const nlohmann::json& sweep, const std::ve
   by_bits("shadow levels", "levels", false, [](const StudyRow& r) { return static_cast<double>(r.levels); },
           "levels_vs_bits.png");
   by_bits("misclassified pixels against the reference (lit but shadowed + shadowed but lit)", "pixels", false,
-          [](const StudyRow& r) { return static_cast<double>(r.lit_shadowed + r.shadowed_lit); },
+          [](const StudyRow& r) { return static_cast<double>(r.reference.lit_shadowed + r.reference.shadowed_lit); },
           "misclassified_vs_bits.png");
   by_bits("self-shadowed pixels against the reference", "pixels", false,
-          [](const StudyRow& r) { return static_cast<double>(r.self_shadowed); }, "self_shadowing_vs_bits.png");
+          [](const StudyRow& r) { return static_cast<double>(r.reference.self_shadowed); },
+          "self_shadowing_vs_bits.png");
   std::vector<double> biases;
   for (const StudyRow& r : rows)
     if (std::find(biases.begin(), biases.end(), r.bias_steps8) == biases.end()) biases.push_back(r.bias_steps8);
@@ -116,7 +117,7 @@ void write_plots(const fs::path& out, const nlohmann::json& sweep, const std::ve
       auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const PlotSeries& p) { return p.name == name; });
       if (it == plot.series.end()) it = plot.series.insert(plot.series.end(), PlotSeries{name, {}, {}});
       it->x.push_back(r.bias_steps8);
-      it->y.push_back(r.exact_self_shadowed);  // acne against the true shadows (docs/studies.md)
+      it->y.push_back(r.exact.self_shadowed);  // acne against the true shadows (docs/studies.md)
     }
     write_plot(out / "self_shadowing_vs_bias.png", plot);
   }
@@ -190,7 +191,8 @@ int study_command(const StudyCommand& c) {
         std::cout << fmt::format(
             "  {:>4} {:>5} {:>6.3g} {:>7} {:>9.5f} {:>9.5f} {:>8.2f} {:>9} {:>9} {:>9} {:>11} {:>11} {:>11.3g}\n",
             r.color_bits, r.depth_bits, r.bias_steps8, r.levels, r.mean_abs_error, r.max_abs_error, r.precision_bits,
-            r.lit_shadowed, r.shadowed_lit, r.self_shadowed, r.exact_lit_shadowed, r.exact_self_shadowed,
+            r.reference.lit_shadowed, r.reference.shadowed_lit, r.reference.self_shadowed, r.exact.lit_shadowed,
+            r.exact.self_shadowed,
             r.depth_step_world);
     }
   } catch (const std::exception& e) {

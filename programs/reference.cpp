@@ -457,17 +457,17 @@ Classification classify(const ProgramRun& run, const std::vector<double>* refere
     const bool faces = glm::dot(s.normal, run.scene.light.eye - s.position) > 0.0;
     if (!exact && faces) ++c.facing_light;
     if (!exact && attenuated) {
-      ++c.lit_shadowed;
-      if (faces) ++c.self_shadowed, ++c.self_shadowed_by_mesh[static_cast<std::size_t>(s.mesh)];
+      ++c.exact.lit_shadowed;
+      if (faces) ++c.exact.self_shadowed, ++c.self_shadowed_by_mesh[static_cast<std::size_t>(s.mesh)];
     }
-    if (exact && !attenuated) ++c.shadowed_lit;
+    if (exact && !attenuated) ++c.exact.shadowed_lit;
     if (reference) {
       const double ref = (*reference)[k];
       if (ref == 0.0 && attenuated) {
-        ++c.ref_lit_shadowed;
-        if (faces) ++c.ref_self_shadowed;
+        ++c.reference.lit_shadowed;
+        if (faces) ++c.reference.self_shadowed;
       }
-      if (ref > 0.0 && !attenuated) ++c.ref_shadowed_lit;
+      if (ref > 0.0 && !attenuated) ++c.reference.shadowed_lit;
     }
   }
   return c;

@@ -69,19 +69,22 @@ SameSamples same_samples(const ProgramRun& run);
 // per pixel, −1 where the pixel sees no surface. The precision study's reference.
 std::vector<double> exact_attenuation(const ProgramRun& run);
 
+// Pixels a program classifies otherwise than a truth does.
+struct Misclassified {
+  int lit_shadowed = 0;   // lit by the truth (attenuation 0), attenuated by the program
+  int shadowed_lit = 0;   // shadowed (attenuated) by the truth, left at 0 by the program
+  int self_shadowed = 0;  // lit_shadowed on surfaces that face the light
+};
+
 // A run's attenuation classified per pixel against the exact shadow test (a shadow ray,
 // double, no quantisation: the algorithm as a whole, sampling included) and, when given,
 // against the program's double-precision reference (exact_attenuation: what the widths cost).
 struct Classification {
-  int surfaces = 0;             // pixels that see a surface
-  int lit_shadowed = 0;         // lit by the exact test, attenuated by the program
-  int shadowed_lit = 0;         // shadowed by the exact test, not attenuated by the program
-  int self_shadowed = 0;        // lit_shadowed on surfaces that face the light
-  int facing_light = 0;         // pixels on surfaces facing the light and lit by the exact test
-  std::vector<int> self_shadowed_by_mesh;  // self_shadowed per scene mesh (mesh 0: the ground)
-  // Against the reference: fully lit there (attenuation 0) but attenuated by the program;
-  // attenuated there but 0 in the program; the first on surfaces that face the light.
-  int ref_lit_shadowed = 0, ref_shadowed_lit = 0, ref_self_shadowed = 0;
+  int surfaces = 0;      // pixels that see a surface
+  Misclassified exact;   // against the exact shadow test
+  Misclassified reference;  // against the reference (zero when none was given)
+  int facing_light = 0;  // pixels on surfaces facing the light and lit by the exact test
+  std::vector<int> self_shadowed_by_mesh;  // exact.self_shadowed per scene mesh (mesh 0: the ground)
 };
 Classification classify(const ProgramRun& run, const std::vector<double>* reference = nullptr);
 

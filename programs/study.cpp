@@ -126,12 +126,8 @@ StudyRow run_study_point(const ProgramOptions& point, int index) {
     e.hash = fnv1a_hex(e.codes, 1);
   }
   const Classification c = classify(run, &reference);
-  row.lit_shadowed = c.ref_lit_shadowed;
-  row.shadowed_lit = c.ref_shadowed_lit;
-  row.self_shadowed = c.ref_self_shadowed;
-  row.exact_lit_shadowed = c.lit_shadowed;
-  row.exact_shadowed_lit = c.shadowed_lit;
-  row.exact_self_shadowed = c.self_shadowed;
+  row.reference = c.reference;
+  row.exact = c.exact;
   row.surfaces = c.surfaces;
   const View& light = run.scene.light;
   if (hw) {
@@ -186,8 +182,9 @@ std::string study_csv(const std::vector<StudyRow>& rows) {
   for (const StudyRow& r : rows)
     out += fmt::format("{},{},{},{},{:.9g},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{},{},{},{:.9g}\n", r.index,
                        r.color_bits, r.depth_bits, r.map_size, r.bias_steps8, r.levels, r.mean_abs_error,
-                       r.max_abs_error, r.precision_bits, r.lit_shadowed, r.shadowed_lit, r.self_shadowed,
-                       r.exact_lit_shadowed, r.exact_shadowed_lit, r.exact_self_shadowed, r.surfaces,
+                       r.max_abs_error, r.precision_bits, r.reference.lit_shadowed, r.reference.shadowed_lit,
+                       r.reference.self_shadowed,
+                       r.exact.lit_shadowed, r.exact.shadowed_lit, r.exact.self_shadowed, r.surfaces,
                        r.depth_step_world);
   return out;
 }
@@ -204,12 +201,12 @@ nlohmann::json row_json(const StudyRow& r) {
           {"mean_abs_error", r.mean_abs_error},
           {"max_abs_error", r.max_abs_error},
           {"precision_bits", r.precision_bits},
-          {"lit_but_shadowed", r.lit_shadowed},
-          {"shadowed_but_lit", r.shadowed_lit},
-          {"self_shadowed", r.self_shadowed},
-          {"exact_lit_but_shadowed", r.exact_lit_shadowed},
-          {"exact_shadowed_but_lit", r.exact_shadowed_lit},
-          {"exact_self_shadowed", r.exact_self_shadowed},
+          {"lit_but_shadowed", r.reference.lit_shadowed},
+          {"shadowed_but_lit", r.reference.shadowed_lit},
+          {"self_shadowed", r.reference.self_shadowed},
+          {"exact_lit_but_shadowed", r.exact.lit_shadowed},
+          {"exact_shadowed_but_lit", r.exact.shadowed_lit},
+          {"exact_self_shadowed", r.exact.self_shadowed},
           {"surfaces", r.surfaces},
           {"depth_step_world", r.depth_step_world}};
 }
@@ -225,12 +222,12 @@ StudyRow row_from_json(const nlohmann::json& j) {
   r.mean_abs_error = j.at("mean_abs_error").get<double>();
   r.max_abs_error = j.at("max_abs_error").get<double>();
   r.precision_bits = j.at("precision_bits").get<double>();
-  r.lit_shadowed = j.at("lit_but_shadowed").get<int>();
-  r.shadowed_lit = j.at("shadowed_but_lit").get<int>();
-  r.self_shadowed = j.at("self_shadowed").get<int>();
-  r.exact_lit_shadowed = j.at("exact_lit_but_shadowed").get<int>();
-  r.exact_shadowed_lit = j.at("exact_shadowed_but_lit").get<int>();
-  r.exact_self_shadowed = j.at("exact_self_shadowed").get<int>();
+  r.reference.lit_shadowed = j.at("lit_but_shadowed").get<int>();
+  r.reference.shadowed_lit = j.at("shadowed_but_lit").get<int>();
+  r.reference.self_shadowed = j.at("self_shadowed").get<int>();
+  r.exact.lit_shadowed = j.at("exact_lit_but_shadowed").get<int>();
+  r.exact.shadowed_lit = j.at("exact_shadowed_but_lit").get<int>();
+  r.exact.self_shadowed = j.at("exact_self_shadowed").get<int>();
   r.surfaces = j.at("surfaces").get<int>();
   r.depth_step_world = j.at("depth_step_world").get<double>();
   return r;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "programs/programs.hpp"
+#include "programs/reference.hpp"
 
 namespace passim {
 
@@ -28,10 +29,9 @@ struct StudyRow {
   double bias_steps8 = 0.0;  // the bias in 8-bit steps of depth
   int levels = 0;
   double mean_abs_error = 0.0, max_abs_error = 0.0, precision_bits = 0.0;
-  // Misclassified pixels against the double-precision reference (what the widths cost)...
-  int lit_shadowed = 0, shadowed_lit = 0, self_shadowed = 0;
-  // ... and against the exact shadow test (the algorithm as a whole, sampling included).
-  int exact_lit_shadowed = 0, exact_shadowed_lit = 0, exact_self_shadowed = 0;
+  // Misclassified pixels against the double-precision reference (what the widths cost) and
+  // against the exact shadow test (the algorithm as a whole, sampling included).
+  Misclassified reference, exact;
   int surfaces = 0;
   double depth_step_world = 0.0;  // one code of the depth encoding, in world units along the light's axis
   CapturedImage edge;  // a shadow edge of the final image, magnified 4x, 8-bit RGB (not in the tables)

@@ -185,11 +185,11 @@ INSTANTIATE_TEST_SUITE_P(Programs, Transcription,
 TEST(Programs, TwelveBitsLeakLessThanEightOnThePaperScene) {
   const Classification c8 = classify(run("shadow-map", 0, 8, "paper"));
   const Classification c12 = classify(run("shadow-map", 0, 12, "paper"));
-  std::cout << "  paper scene, shadow-map, default bias: 8 bits " << c8.shadowed_lit << " shadowed pixels lit, "
-            << c8.self_shadowed << " self-shadowed; 12 bits " << c12.shadowed_lit << " and " << c12.self_shadowed
+  std::cout << "  paper scene, shadow-map, default bias: 8 bits " << c8.exact.shadowed_lit << " shadowed pixels lit, "
+            << c8.exact.self_shadowed << " self-shadowed; 12 bits " << c12.exact.shadowed_lit << " and " << c12.exact.self_shadowed
             << "\n";
   EXPECT_EQ(c8.surfaces, c12.surfaces);
-  EXPECT_LT(c12.shadowed_lit, c8.shadowed_lit);
+  EXPECT_LT(c12.exact.shadowed_lit, c8.exact.shadowed_lit);
 }
 
 // Misclassification against a reference counts, over the pixels that see a surface, those
@@ -209,11 +209,11 @@ TEST(Programs, ClassificationAgainstAReferenceCountsByDefinition) {
   const Classification lit = classify(r, &zero), shadowed = classify(r, &half);
   EXPECT_EQ(lit.surfaces, seen);
   EXPECT_GT(attenuated, 1000);
-  EXPECT_EQ(lit.ref_lit_shadowed, attenuated);
-  EXPECT_EQ(lit.ref_shadowed_lit, 0);
-  EXPECT_LE(lit.ref_self_shadowed, lit.ref_lit_shadowed);
-  EXPECT_EQ(shadowed.ref_lit_shadowed, 0);
-  EXPECT_EQ(shadowed.ref_shadowed_lit, seen - attenuated);
+  EXPECT_EQ(lit.reference.lit_shadowed, attenuated);
+  EXPECT_EQ(lit.reference.shadowed_lit, 0);
+  EXPECT_LE(lit.reference.self_shadowed, lit.reference.lit_shadowed);
+  EXPECT_EQ(shadowed.reference.lit_shadowed, 0);
+  EXPECT_EQ(shadowed.reference.shadowed_lit, seen - attenuated);
 }
 
 // The software references (double precision, no pipeline) on the edges scene.
