@@ -6,6 +6,10 @@
 
 #include "pipeline/fixed_point.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace passim {
 
 bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored) {
@@ -55,6 +59,96 @@ std::uint32_t blend_codes_unit_factors(GLenum equation, bool src_one, bool dst_o
 bool blend_has_unit_factors(GLenum equation, GLenum src_factor, GLenum dst_factor) {
   auto unit = [](GLenum f) { return f == GL_ZERO || f == GL_ONE; };
   return equation == GL_MIN || equation == GL_MAX || (unit(src_factor) && unit(dst_factor));
+}
+
+std::uint64_t blend_span_unit_factors_scalar(const UnitFactorBlend& b, const std::uint8_t* live,
+                                             const std::uint16_t* src, std::uint16_t* dst, int begin, int end) {
+  std::uint64_t blended = 0;
+  // One loop per equation, so that the equation's case is chosen once per span.
+  auto blend_loop = [&](auto equation) {
+    for (int i = begin; i < end; ++i) {
+      if (!live[i]) continue;
+      ++blended;
+      std::uint16_t* d = dst + 4 * i;
+      const std::uint16_t* s = src + 4 * i;
+      for (int k = 0; k < 4; ++k)
+        if (b.written[k])
+          d[k] = static_cast<std::uint16_t>(
+              blend_codes_unit_factors(decltype(equation)::value, b.src_one, b.dst_one, s[k], d[k], b.max[k]));
+    }
+  };
+  switch (b.equation) {
+    case GL_FUNC_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_SUBTRACT>{}); break;
+    case GL_FUNC_REVERSE_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_REVERSE_SUBTRACT>{}); break;
+    case GL_MIN: blend_loop(std::integral_constant<GLenum, GL_MIN>{}); break;
+    case GL_MAX: blend_loop(std::integral_constant<GLenum, GL_MAX>{}); break;
+    default: blend_loop(std::integral_constant<GLenum, GL_FUNC_ADD>{}); break;
+  }
+  return blended;
+}
+
+#if defined(__SSE2__)
+namespace {
+// Two fragments (8 codes, all below 2^16) per step: a − sat(a − b) = min(a, b), b + sat(a − b)
+// = max(a, b), sat(a + b) is a + b or at least 65535 >= max, so min(sat(a + b), max) is
+// blend_codes_unit_factors's min(a + b, max).
+template <GLenum Equation>
+std::uint64_t blend_pairs_sse2(const UnitFactorBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                               std::uint16_t* dst, int begin, int end) {
+  auto lanes64 = [](std::uint64_t lo, std::uint64_t hi) {
+    return _mm_set_epi64x(static_cast<long long>(hi), static_cast<long long>(lo));
+  };
+  std::uint64_t written = 0, max = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (b.written[k]) written |= std::uint64_t{0xffff} << (16 * k);
+    max |= static_cast<std::uint64_t>(b.max[k] & 0xffff) << (16 * k);
+  }
+  const __m128i max2 = lanes64(max, max);
+  const __m128i src_keep = b.src_one ? _mm_set1_epi32(-1) : _mm_setzero_si128();
+  const __m128i dst_keep = b.dst_one ? _mm_set1_epi32(-1) : _mm_setzero_si128();
+  std::uint64_t blended = 0;
+  int i = begin;
+  for (; i + 2 <= end; i += 2) {
+    if (!live[i] && !live[i + 1]) continue;
+    const std::uint64_t m0 = live[i] ? written : 0, m1 = live[i + 1] ? written : 0;
+    blended += static_cast<std::uint64_t>(live[i] != 0) + static_cast<std::uint64_t>(live[i + 1] != 0);
+    const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + 4 * i));
+    const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(dst + 4 * i));
+    const __m128i sp = _mm_and_si128(s, src_keep), dp = _mm_and_si128(d, dst_keep);
+    __m128i r;
+    if constexpr (Equation == GL_FUNC_SUBTRACT) {
+      r = _mm_subs_epu16(sp, dp);
+    } else if constexpr (Equation == GL_FUNC_REVERSE_SUBTRACT) {
+      r = _mm_subs_epu16(dp, sp);
+    } else if constexpr (Equation == GL_MIN) {
+      r = _mm_sub_epi16(s, _mm_subs_epu16(s, d));
+    } else if constexpr (Equation == GL_MAX) {
+      r = _mm_add_epi16(d, _mm_subs_epu16(s, d));
+    } else {
+      const __m128i sum = _mm_adds_epu16(sp, dp);
+      r = _mm_sub_epi16(sum, _mm_subs_epu16(sum, max2));
+    }
+    const __m128i m = lanes64(m0, m1);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + 4 * i), _mm_or_si128(_mm_and_si128(r, m), _mm_andnot_si128(m, d)));
+  }
+  return blended + blend_span_unit_factors_scalar(b, live, src, dst, i, end);
+}
+}  // namespace
+#endif
+
+std::uint64_t blend_span_unit_factors(const UnitFactorBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                                      std::uint16_t* dst, int begin, int end) {
+#if defined(__SSE2__)
+  switch (b.equation) {
+    case GL_FUNC_SUBTRACT: return blend_pairs_sse2<GL_FUNC_SUBTRACT>(b, live, src, dst, begin, end);
+    case GL_FUNC_REVERSE_SUBTRACT: return blend_pairs_sse2<GL_FUNC_REVERSE_SUBTRACT>(b, live, src, dst, begin, end);
+    case GL_MIN: return blend_pairs_sse2<GL_MIN>(b, live, src, dst, begin, end);
+    case GL_MAX: return blend_pairs_sse2<GL_MAX>(b, live, src, dst, begin, end);
+    default: return blend_pairs_sse2<GL_FUNC_ADD>(b, live, src, dst, begin, end);
+  }
+#else
+  return blend_span_unit_factors_scalar(b, live, src, dst, begin, end);
+#endif
 }
 
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask) {
@@ -383,30 +477,15 @@ void FragmentOps::process(FragmentSpan& span) {
         blend_has_unit_factors(ops.blend_equation, ops.blend_src, ops.blend_dst)) {
       // Factors 0 and 1 on codes of one width: the same results in integers. A channel
       // without bits is not written, so it needs no value.
-      const bool src_one = ops.blend_src == GL_ONE, dst_one = ops.blend_dst == GL_ONE;
-      std::uint32_t max[4];
-      for (int k = 0; k < 4; ++k) max[k] = max_code(cfg.color_bits[k]);
-      std::uint64_t blended = 0;
-      // One loop per equation, so that the equation's case is chosen once per span.
-      auto blend_loop = [&](auto equation) {
-        for (int i = begin; i < end; ++i) {
-          if (!live[i]) continue;
-          ++blended;
-          std::uint16_t* d = dst + 4 * i;
-          const std::uint16_t* s = span.rgba + 4 * i;
-          for (int k = 0; k < 4; ++k)
-            if (written[k])
-              d[k] = static_cast<std::uint16_t>(
-                  blend_codes_unit_factors(decltype(equation)::value, src_one, dst_one, s[k], d[k], max[k]));
-        }
-      };
-      switch (ops.blend_equation) {
-        case GL_FUNC_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_SUBTRACT>{}); break;
-        case GL_FUNC_REVERSE_SUBTRACT: blend_loop(std::integral_constant<GLenum, GL_FUNC_REVERSE_SUBTRACT>{}); break;
-        case GL_MIN: blend_loop(std::integral_constant<GLenum, GL_MIN>{}); break;
-        case GL_MAX: blend_loop(std::integral_constant<GLenum, GL_MAX>{}); break;
-        default: blend_loop(std::integral_constant<GLenum, GL_FUNC_ADD>{}); break;
+      UnitFactorBlend b;
+      b.equation = ops.blend_equation;
+      b.src_one = ops.blend_src == GL_ONE;
+      b.dst_one = ops.blend_dst == GL_ONE;
+      for (int k = 0; k < 4; ++k) {
+        b.max[k] = max_code(cfg.color_bits[k]);
+        b.written[k] = written[k];
       }
+      const std::uint64_t blended = blend_span_unit_factors(b, live, span.rgba, dst, begin, end);
       counters.blend_operations += blended;
       counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
       continue;

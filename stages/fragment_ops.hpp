@@ -62,6 +62,21 @@ std::uint32_t blend_codes_unit_factors(GLenum equation, bool src_one, bool dst_o
                                        std::uint32_t d, std::uint32_t max);
 // True when blend_codes_unit_factors applies to this state.
 bool blend_has_unit_factors(GLenum equation, GLenum src_factor, GLenum dst_factor);
+// blend_codes_unit_factors over fragments [begin, end) of a span where live[i] != 0: source
+// codes `src` (4 per fragment) into the destination codes `dst`, channels where written[k];
+// returns the fragments blended. The SSE2 kernel (8 codes at once: unsigned saturating
+// adds and subtracts, min as a − sat(a − b)) and the scalar reference give the same codes
+// (`Blend.UnitFactorSpanKernelEqualsTheScalarLoop`).
+struct UnitFactorBlend {
+  GLenum equation = GL_FUNC_ADD;
+  bool src_one = true, dst_one = true;
+  std::uint32_t max[4] = {0, 0, 0, 0};
+  bool written[4] = {true, true, true, true};
+};
+std::uint64_t blend_span_unit_factors(const UnitFactorBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                                      std::uint16_t* dst, int begin, int end);
+std::uint64_t blend_span_unit_factors_scalar(const UnitFactorBlend& b, const std::uint8_t* live,
+                                             const std::uint16_t* src, std::uint16_t* dst, int begin, int end);
 // §4.1.7 logic operation on n-bit codes.
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask);
 

@@ -60,32 +60,29 @@ std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits) {
 
 namespace {
 
-// s/q, t/q, r/q and (optionally) λ for the fragments of a span (eq. 3.4, eq. 3.15).
+// s/q, t/q, r/q (the span kernel) and, when λ is needed, λ (eq. 3.4, eq. 3.15).
 void texture_coordinates(const Plane tex[4], const PlaneSetup& setup, double cy, int x0, int n,
                          const TriangleOptions& o, FragmentSpan& span) {
-  double row[4];
-  for (int k = 0; k < 4; ++k) row[k] = tex[k].at_row(cy, setup.y0);
+  SpanPlane stq[4];
+  for (int k = 0; k < 4; ++k) stq[k] = SpanPlane{tex[k].at_row(cy, setup.y0), tex[k].dfdx};
+  texture_coordinates(stq, x0, setup.x0, n, span.s, span.t, span.r);
+  if (!o.lod) {
+    std::fill(span.lambda, span.lambda + n, 0.0);
+    return;
+  }
   for (int i = 0; i < n; ++i) {
+    // ∂(a/q)/∂x = (a_x·q − a·q_x)/q², likewise for y; u = W·s, v = H·t;
+    // ρ = max(‖(∂u/∂x, ∂v/∂x)‖, ‖(∂u/∂y, ∂v/∂y)‖), λ = log2 ρ clamped to [MIN_LOD, MAX_LOD].
     const double dx = (static_cast<double>(x0 + i) + 0.5) - setup.x0;
     double a[4];
-    for (int k = 0; k < 4; ++k) a[k] = row[k] + tex[k].dfdx * dx;
-    const double q = a[3];
-    span.s[i] = a[0] / q;
-    span.t[i] = a[1] / q;
-    span.r[i] = a[2] / q;
-    if (o.lod) {
-      // ∂(a/q)/∂x = (a_x·q − a·q_x)/q², likewise for y; u = W·s, v = H·t;
-      // ρ = max(‖(∂u/∂x, ∂v/∂x)‖, ‖(∂u/∂y, ∂v/∂y)‖), λ = log2 ρ clamped to [MIN_LOD, MAX_LOD].
-      const double q2 = q * q;
-      const double dudx = o.lod_width * (tex[0].dfdx * q - a[0] * tex[3].dfdx) / q2;
-      const double dvdx = o.lod_height * (tex[1].dfdx * q - a[1] * tex[3].dfdx) / q2;
-      const double dudy = o.lod_width * (tex[0].dfdy * q - a[0] * tex[3].dfdy) / q2;
-      const double dvdy = o.lod_height * (tex[1].dfdy * q - a[1] * tex[3].dfdy) / q2;
-      const double rho = std::max(std::sqrt(dudx * dudx + dvdx * dvdx), std::sqrt(dudy * dudy + dvdy * dvdy));
-      span.lambda[i] = std::clamp(std::log2(rho), o.min_lod, o.max_lod);
-    } else {
-      span.lambda[i] = 0.0;
-    }
+    for (int k = 0; k < 4; ++k) a[k] = stq[k].row + tex[k].dfdx * dx;
+    const double q = a[3], q2 = q * q;
+    const double dudx = o.lod_width * (tex[0].dfdx * q - a[0] * tex[3].dfdx) / q2;
+    const double dvdx = o.lod_height * (tex[1].dfdx * q - a[1] * tex[3].dfdx) / q2;
+    const double dudy = o.lod_width * (tex[0].dfdy * q - a[0] * tex[3].dfdy) / q2;
+    const double dvdy = o.lod_height * (tex[1].dfdy * q - a[1] * tex[3].dfdy) / q2;
+    const double rho = std::max(std::sqrt(dudx * dudx + dvdx * dvdx), std::sqrt(dudy * dudy + dvdy * dvdy));
+    span.lambda[i] = std::clamp(std::log2(rho), o.min_lod, o.max_lod);
   }
 }
 

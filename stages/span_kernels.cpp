@@ -37,7 +37,46 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
   }
 }
 
+void texture_coordinates_scalar(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t,
+                                double* r) {
+  for (int i = 0; i < n; ++i) {
+    const double dx = centre_offset(x0 + i, x_ref);
+    const double q = stq[3].row + stq[3].d_dx * dx;
+    s[i] = (stq[0].row + stq[0].d_dx * dx) / q;
+    t[i] = (stq[1].row + stq[1].d_dx * dx) / q;
+    r[i] = (stq[2].row + stq[2].d_dx * dx) / q;
+  }
+}
+
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
+namespace {
+__attribute__((target("avx2"))) void texture_coordinates_avx2(const SpanPlane stq[4], int x0, double x_ref, int n,
+                                                              double* s, double* t, double* r) {
+  const __m256d half = _mm256_set1_pd(0.5), ref = _mm256_set1_pd(x_ref);
+  __m256d row[4], d[4];
+  for (int k = 0; k < 4; ++k) {
+    row[k] = _mm256_set1_pd(stq[k].row);
+    d[k] = _mm256_set1_pd(stq[k].d_dx);
+  }
+  double* out[3] = {s, t, r};
+  int i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d xs = _mm256_cvtepi32_pd(_mm_setr_epi32(x0 + i, x0 + i + 1, x0 + i + 2, x0 + i + 3));
+    const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
+    const __m256d q = _mm256_add_pd(row[3], _mm256_mul_pd(d[3], dx));
+    for (int k = 0; k < 3; ++k)
+      _mm256_storeu_pd(out[k] + i, _mm256_div_pd(_mm256_add_pd(row[k], _mm256_mul_pd(d[k], dx)), q));
+  }
+  texture_coordinates_scalar(stq, x0 + i, x_ref, n - i, s + i, t + i, r + i);
+}
+}  // namespace
+
+void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r) {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return texture_coordinates_avx2(stq, x0, x_ref, n, s, t, r);
+  texture_coordinates_scalar(stq, x0, x_ref, n, s, t, r);
+}
+
 namespace {
 // AVX2: four fragments at a time, the same operations as the scalar reference (no FMA:
 // each multiply and add is its own instruction, and -ffp-contract=off forbids fusing them).
@@ -120,6 +159,9 @@ void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double s
   color_codes_avx2(q, c, scale, x0, x_ref, n, out, true);
 }
 #else
+void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r) {
+  texture_coordinates_scalar(stq, x0, x_ref, n, s, t, r);
+}
 void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
                         std::uint32_t* out) {
   depth_codes(z, offset, x0, x_ref, n, scale, out);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "pipeline/fixed_point.hpp"
 #include "stages/avx2.hpp"
@@ -266,9 +267,49 @@ std::uint64_t linear_replace_span_scalar(const LevelGeometry& l, const FragmentS
 }
 
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-// The same operations in the same order on the four components at once: the weights as
-// lerp_1d/lerp_2d form them (products of (1−α), α, (1−β), β), each times its texel, summed
-// left to right (no FMA: -ffp-contract=off, and mul/add intrinsics), then float_to_fixed.
+namespace {
+
+// wrap_coordinate on four finite coordinates: REPEAT's s − floor(s) (ROUNDPD's floor is
+// floor_exact's value), CLAMP's and CLAMP_TO_EDGE's std::clamp as MAXPD/MINPD (equal for
+// finite values).
+__attribute__((target("avx2"))) inline __m256d wrap_coordinate_4(__m256d s, GLenum mode, double edge) {
+  if (mode == GL_REPEAT) return _mm256_sub_pd(s, _mm256_floor_pd(s));
+  const double lo = mode == GL_CLAMP_TO_EDGE ? edge : 0.0;
+  return _mm256_min_pd(_mm256_max_pd(s, _mm256_set1_pd(lo)), _mm256_set1_pd(1.0 - lo));
+}
+
+// wrap_index on four lower indices i0 and their i0 + 1. Under REPEAT the wrapped coordinate
+// lies in [0, 1], so i0 = floor(u − 1/2) lies in [−1, size − 1] and one conditional add or
+// subtract of `size` is i mod size; the clamping modes leave indices alone.
+__attribute__((target("avx2"))) inline void wrap_index_4(__m128i i0, GLenum mode, int size, __m128i& lo,
+                                                         __m128i& hi) {
+  const __m128i i1 = _mm_add_epi32(i0, _mm_set1_epi32(1));
+  if (mode != GL_REPEAT) {
+    lo = i0;
+    hi = i1;
+    return;
+  }
+  const __m128i n = _mm_set1_epi32(size);
+  lo = _mm_add_epi32(i0, _mm_and_si128(_mm_cmplt_epi32(i0, _mm_setzero_si128()), n));
+  hi = _mm_sub_epi32(i1, _mm_andnot_si128(_mm_cmplt_epi32(i1, n), n));
+}
+
+// Lanes whose two indices both lie in [−border, size + border): linear_footprint's test.
+__attribute__((target("avx2"))) inline __m128i stored_4(__m128i lo, __m128i hi, int border, int size) {
+  const __m128i first = _mm_set1_epi32(-border - 1), end = _mm_set1_epi32(size + border);
+  const __m128i lo_in = _mm_and_si128(_mm_cmpgt_epi32(lo, first), _mm_cmplt_epi32(lo, end));
+  const __m128i hi_in = _mm_and_si128(_mm_cmpgt_epi32(hi, first), _mm_cmplt_epi32(hi, end));
+  return _mm_and_si128(lo_in, hi_in);
+}
+
+}  // namespace
+
+// linear_footprint and the filter on four fragments at a time: wrap, scale, floor, fractions,
+// indices and weights in lanes (the same IEEE operations as the scalar reference, in the same
+// order: no FMA under -ffp-contract=off and with mul/add intrinsics); then per fragment the
+// four components at once — each weight times its texel, summed left to right — and
+// float_to_fixed (clamp_nan_low to [0, 1], times 2^bits − 1, + 0.5, truncated). The codes
+// `replace` selects are merged into the fragment's four with one mask.
 __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const LevelGeometry& l, const FragmentSpan& span,
                                                                        const std::array<int, 4>& bits,
                                                                        const std::array<bool, 4>& replace,
@@ -276,28 +317,100 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
   const __m256d scale = _mm256_setr_pd(static_cast<double>(max_code(bits[0])), static_cast<double>(max_code(bits[1])),
                                        static_cast<double>(max_code(bits[2])), static_cast<double>(max_code(bits[3])));
-  return for_each_footprint(l, span, general, counters, [&](const Footprint& f, std::uint16_t* c)
-                                                            __attribute__((target("avx2"))) {
-    __m256d r;
-    if (l.dims == 2) {
-      const double a = f.alpha, b = f.beta;
-      const __m256d w00 = _mm256_set1_pd((1.0 - a) * (1.0 - b)), w10 = _mm256_set1_pd(a * (1.0 - b));
-      const __m256d w01 = _mm256_set1_pd((1.0 - a) * b), w11 = _mm256_set1_pd(a * b);
-      r = _mm256_mul_pd(w00, _mm256_loadu_pd(f.t00));
-      r = _mm256_add_pd(r, _mm256_mul_pd(w10, _mm256_loadu_pd(f.t10)));
-      r = _mm256_add_pd(r, _mm256_mul_pd(w01, _mm256_loadu_pd(f.t01)));
-      r = _mm256_add_pd(r, _mm256_mul_pd(w11, _mm256_loadu_pd(f.t11)));
+  std::uint64_t keep = 0;  // the bits of the four 16-bit codes that REPLACE leaves alone
+  for (int k = 0; k < 4; ++k)
+    if (!replace[static_cast<std::size_t>(k)]) keep |= std::uint64_t{0xffff} << (16 * k);
+  const bool two = l.dims == 2;
+  const __m256d w_size = _mm256_set1_pd(static_cast<double>(l.w)), h_size = _mm256_set1_pd(static_cast<double>(l.h));
+  const std::size_t row = static_cast<std::size_t>(l.width);
+  const double* origin = l.values + 4 * (static_cast<std::size_t>(l.row_border) * row + static_cast<std::size_t>(l.border));
+  std::uint64_t filtered = 0;
+  for (int i0 = 0; i0 < span.count; i0 += 4) {
+    const int n = std::min(4, span.count - i0);
+    __m256d s, t;
+    if (n == 4) {
+      s = _mm256_loadu_pd(span.s + i0);
+      t = _mm256_loadu_pd(span.t + i0);
     } else {
-      r = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(1.0 - f.alpha), _mm256_loadu_pd(f.t00)),
-                        _mm256_mul_pd(_mm256_set1_pd(f.alpha), _mm256_loadu_pd(f.t10)));
+      alignas(32) double ps[4] = {0, 0, 0, 0}, pt[4] = {0, 0, 0, 0};
+      for (int k = 0; k < n; ++k) {
+        ps[k] = span.s[i0 + k];
+        pt[k] = span.t[i0 + k];
+      }
+      s = _mm256_load_pd(ps);
+      t = _mm256_load_pd(pt);
     }
-    // float_to_fixed: clamp_nan_low to [0, 1], times 2^bits − 1, + 0.5, truncated.
-    const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
-    alignas(16) std::int32_t codes[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm256_cvttpd_epi32(x));
-    for (int k = 0; k < 4; ++k)
-      if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(codes[k]);
-  });
+    // Finite lanes: x − x is 0 exactly for finite x, NaN for NaN and ±inf. The others take
+    // 0 here (their results are discarded) so that no conversion sees a NaN.
+    const __m256d finite = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(s, s), zero, _CMP_EQ_OQ),
+                                         _mm256_cmp_pd(_mm256_sub_pd(t, t), zero, _CMP_EQ_OQ));
+    s = _mm256_and_pd(s, finite);
+    t = _mm256_and_pd(t, finite);
+    const __m256d uu = _mm256_sub_pd(_mm256_mul_pd(wrap_coordinate_4(s, l.wrap_s, l.edge_s), w_size), half);
+    const __m256d fu = _mm256_floor_pd(uu);
+    const __m256d alpha = _mm256_sub_pd(uu, fu);
+    __m128i ilo, ihi;
+    wrap_index_4(_mm256_cvttpd_epi32(fu), l.wrap_s, l.w, ilo, ihi);
+    __m128i stored = stored_4(ilo, ihi, l.border, l.w);
+    __m128i jlo = _mm_setzero_si128(), jhi = _mm_setzero_si128();
+    __m256d beta = zero;
+    if (two) {
+      const __m256d vv = _mm256_sub_pd(_mm256_mul_pd(wrap_coordinate_4(t, l.wrap_t, l.edge_t), h_size), half);
+      const __m256d fv = _mm256_floor_pd(vv);
+      beta = _mm256_sub_pd(vv, fv);
+      wrap_index_4(_mm256_cvttpd_epi32(fv), l.wrap_t, l.h, jlo, jhi);
+      stored = _mm_and_si128(stored, stored_4(jlo, jhi, l.border, l.h));
+    }
+    const int lanes = _mm_movemask_ps(_mm_castsi128_ps(stored)) & _mm256_movemask_pd(finite) & ((1 << n) - 1);
+    // The weights as lerp_1d / lerp_2d form them.
+    const __m256d not_alpha = _mm256_sub_pd(one, alpha), not_beta = _mm256_sub_pd(one, beta);
+    alignas(32) double w00[4], w10[4], w01[4], w11[4];
+    alignas(16) std::int32_t is[2][4], js[2][4];
+    if (two) {
+      _mm256_store_pd(w00, _mm256_mul_pd(not_alpha, not_beta));
+      _mm256_store_pd(w10, _mm256_mul_pd(alpha, not_beta));
+      _mm256_store_pd(w01, _mm256_mul_pd(not_alpha, beta));
+      _mm256_store_pd(w11, _mm256_mul_pd(alpha, beta));
+    } else {
+      _mm256_store_pd(w00, not_alpha);
+      _mm256_store_pd(w10, alpha);
+    }
+    _mm_store_si128(reinterpret_cast<__m128i*>(is[0]), ilo);
+    _mm_store_si128(reinterpret_cast<__m128i*>(is[1]), ihi);
+    _mm_store_si128(reinterpret_cast<__m128i*>(js[0]), jlo);
+    _mm_store_si128(reinterpret_cast<__m128i*>(js[1]), jhi);
+    for (int k = 0; k < n; ++k) {
+      const bool ok = (lanes >> k) & 1;
+      general[i0 + k] = !ok;
+      if (!ok) continue;
+      auto at = [&](int x, int y) {
+        return origin + 4 * (static_cast<std::ptrdiff_t>(y) * static_cast<std::ptrdiff_t>(row) + x);
+      };
+      __m256d r;
+      if (two) {
+        r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(is[0][k], js[0][k])));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(is[1][k], js[0][k]))));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), _mm256_loadu_pd(at(is[0][k], js[1][k]))));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), _mm256_loadu_pd(at(is[1][k], js[1][k]))));
+      } else {
+        r = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(is[0][k], 0))),
+                          _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(is[1][k], 0))));
+      }
+      const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
+      // Codes are at most 65535: PACKUSDW keeps them exactly.
+      const __m128i codes = _mm_packus_epi32(_mm256_cvttpd_epi32(x), _mm_setzero_si128());
+      std::uint16_t* c = span.rgba + 4 * (i0 + k);
+      std::uint64_t old = 0, now = static_cast<std::uint64_t>(_mm_cvtsi128_si64(codes));
+      std::memcpy(&old, c, sizeof old);
+      now = (old & keep) | (now & ~keep);
+      std::memcpy(c, &now, sizeof now);
+    }
+    filtered += static_cast<std::uint64_t>(__builtin_popcount(static_cast<unsigned>(lanes)));
+  }
+  const std::uint64_t texels = two ? 4 : 2;
+  counters.texels_fetched += filtered * texels;
+  counters.texture_bits_read += filtered * texels * static_cast<std::uint64_t>(l.bits_per_texel);
+  return filtered;
 }
 #endif
 
