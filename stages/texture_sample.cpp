@@ -365,7 +365,6 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
     // The weights as lerp_1d / lerp_2d form them.
     const __m256d not_alpha = _mm256_sub_pd(one, alpha), not_beta = _mm256_sub_pd(one, beta);
     alignas(32) double w00[4], w10[4], w01[4], w11[4];
-    alignas(16) std::int32_t is[2][4], js[2][4];
     if (two) {
       _mm256_store_pd(w00, _mm256_mul_pd(not_alpha, not_beta));
       _mm256_store_pd(w10, _mm256_mul_pd(alpha, not_beta));
@@ -375,26 +374,32 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
       _mm256_store_pd(w00, not_alpha);
       _mm256_store_pd(w10, alpha);
     }
-    _mm_store_si128(reinterpret_cast<__m128i*>(is[0]), ilo);
-    _mm_store_si128(reinterpret_cast<__m128i*>(is[1]), ihi);
-    _mm_store_si128(reinterpret_cast<__m128i*>(js[0]), jlo);
-    _mm_store_si128(reinterpret_cast<__m128i*>(js[1]), jhi);
+    // Byte offsets from `origin` of the four texels, (j·row + i)·32, in 64 bits (VPMULDQ: the
+    // signed 32-bit j times the row length).
+    const __m256i row64 = _mm256_set1_epi64x(static_cast<long long>(row));
+    const __m256i j0 = _mm256_mul_epi32(_mm256_cvtepi32_epi64(jlo), row64);
+    const __m256i j1 = _mm256_mul_epi32(_mm256_cvtepi32_epi64(jhi), row64);
+    const __m256i il = _mm256_cvtepi32_epi64(ilo), ih = _mm256_cvtepi32_epi64(ihi);
+    alignas(32) std::int64_t o00[4], o10[4], o01[4], o11[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o00), _mm256_slli_epi64(_mm256_add_epi64(j0, il), 5));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o10), _mm256_slli_epi64(_mm256_add_epi64(j0, ih), 5));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o01), _mm256_slli_epi64(_mm256_add_epi64(j1, il), 5));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o11), _mm256_slli_epi64(_mm256_add_epi64(j1, ih), 5));
+    const char* base = reinterpret_cast<const char*>(origin);
     for (int k = 0; k < n; ++k) {
       const bool ok = (lanes >> k) & 1;
       general[i0 + k] = !ok;
       if (!ok) continue;
-      auto at = [&](int x, int y) {
-        return origin + 4 * (static_cast<std::ptrdiff_t>(y) * static_cast<std::ptrdiff_t>(row) + x);
-      };
+      auto at = [&](const std::int64_t* o) { return reinterpret_cast<const double*>(base + o[k]); };
       __m256d r;
       if (two) {
-        r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(is[0][k], js[0][k])));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(is[1][k], js[0][k]))));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), _mm256_loadu_pd(at(is[0][k], js[1][k]))));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), _mm256_loadu_pd(at(is[1][k], js[1][k]))));
+        r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(o00)));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(o10))));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), _mm256_loadu_pd(at(o01))));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), _mm256_loadu_pd(at(o11))));
       } else {
-        r = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(is[0][k], 0))),
-                          _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(is[1][k], 0))));
+        r = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(o00))),
+                          _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(o10))));
       }
       const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
       // Codes are at most 65535: PACKUSDW keeps them exactly.
