@@ -427,8 +427,8 @@ std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& sp
   return linear_replace_span_scalar(l, span, bits, replace, general, counters);
 }
 
-std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
-                                   const std::array<bool, 4>& replace, std::uint8_t* general) {
+std::uint64_t nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
+                                          const std::array<bool, 4>& replace, std::uint8_t* general) {
   const int b = l.border, bj = l.row_border, w = l.w, h = l.h;
   std::uint64_t fetched = 0;
   for (int n = 0; n < span.count; ++n) {
@@ -446,6 +446,79 @@ std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* 
       if (replace[static_cast<std::size_t>(k)]) c[k] = texel[k];
   }
   return fetched;
+}
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+// NEAREST on four fragments at a time: the wrapped coordinate lies in [0, 1] under every wrap
+// mode, so floor(u) clamped to size − 1 is a stored texel's index (wrap_index leaves it alone),
+// and no fragment needs the border colour.
+__attribute__((target("avx2"))) std::uint64_t nearest_replace_span_avx2(const LevelGeometry& l,
+                                                                        const std::uint16_t* codes,
+                                                                        const FragmentSpan& span,
+                                                                        const std::array<bool, 4>& replace,
+                                                                        std::uint8_t* general) {
+  std::uint64_t keep = 0;  // the bits of the four 16-bit codes that REPLACE leaves alone
+  for (int k = 0; k < 4; ++k)
+    if (!replace[static_cast<std::size_t>(k)]) keep |= std::uint64_t{0xffff} << (16 * k);
+  const bool two = l.dims == 2;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d w_size = _mm256_set1_pd(static_cast<double>(l.w)), h_size = _mm256_set1_pd(static_cast<double>(l.h));
+  const __m128i w_last = _mm_set1_epi32(l.w - 1), h_last = _mm_set1_epi32(l.h - 1);
+  const __m256i row64 = _mm256_set1_epi64x(static_cast<long long>(l.width));
+  const std::uint16_t* origin =
+      codes + 4 * (static_cast<std::size_t>(l.row_border) * static_cast<std::size_t>(l.width) +
+                   static_cast<std::size_t>(l.border));
+  for (int i0 = 0; i0 < span.count; i0 += 4) {
+    const int n = std::min(4, span.count - i0);
+    __m256d s, t;
+    if (n == 4) {
+      s = _mm256_loadu_pd(span.s + i0);
+      t = _mm256_loadu_pd(span.t + i0);
+    } else {
+      alignas(32) double ps[4] = {0, 0, 0, 0}, pt[4] = {0, 0, 0, 0};
+      for (int k = 0; k < n; ++k) {
+        ps[k] = span.s[i0 + k];
+        pt[k] = span.t[i0 + k];
+      }
+      s = _mm256_load_pd(ps);
+      t = _mm256_load_pd(pt);
+    }
+    // Non-finite coordinates sample at 0 (x − x is NaN exactly for NaN and ±inf).
+    s = _mm256_and_pd(s, _mm256_cmp_pd(_mm256_sub_pd(s, s), zero, _CMP_EQ_OQ));
+    t = _mm256_and_pd(t, _mm256_cmp_pd(_mm256_sub_pd(t, t), zero, _CMP_EQ_OQ));
+    const __m128i i = _mm_min_epi32(
+        _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_mul_pd(wrap_coordinate_4(s, l.wrap_s, l.edge_s), w_size))), w_last);
+    __m128i j = _mm_setzero_si128();
+    if (two)
+      j = _mm_min_epi32(
+          _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_mul_pd(wrap_coordinate_4(t, l.wrap_t, l.edge_t), h_size))),
+          h_last);
+    // Element offsets (j·width + i)·4 of the texels' codes, in 64 bits.
+    alignas(32) std::int64_t offset[4];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(offset),
+                       _mm256_slli_epi64(_mm256_add_epi64(_mm256_mul_epi32(_mm256_cvtepi32_epi64(j), row64),
+                                                          _mm256_cvtepi32_epi64(i)),
+                                         2));
+    for (int k = 0; k < n; ++k) {
+      general[i0 + k] = 0;
+      std::uint64_t texel = 0, old = 0;
+      std::memcpy(&texel, origin + offset[k], sizeof texel);
+      std::uint16_t* c = span.rgba + 4 * (i0 + k);
+      std::memcpy(&old, c, sizeof old);
+      const std::uint64_t now = (old & keep) | (texel & ~keep);
+      std::memcpy(c, &now, sizeof now);
+    }
+  }
+  return static_cast<std::uint64_t>(span.count);
+}
+#endif
+
+std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
+                                   const std::array<bool, 4>& replace, std::uint8_t* general) {
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+  if (cpu_has_avx2()) return nearest_replace_span_avx2(l, codes, span, replace, general);
+#endif
+  return nearest_replace_span_scalar(l, codes, span, replace, general);
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,

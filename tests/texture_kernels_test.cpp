@@ -67,5 +67,52 @@ TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
   EXPECT_GT(compared, 3000);
 }
 
+TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
+  if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor: only the scalar reference runs";
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> coord(-1.5, 2.5);
+  const double odd[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity(), -0.0, 1.0, 0.0, 0.5, -1e-17, 1e20, -4.5e15,
+                        0x1.fffffffffffffp-1, 2147483648.5};
+  const GLenum wraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
+  int compared = 0;
+  for (int round = 0; round < 1000; ++round) {
+    const int dims = 1 + static_cast<int>(rng() % 2), border = static_cast<int>(rng() % 2);
+    const int w = 1 << (rng() % 5), h = dims == 2 ? 1 << (rng() % 5) : 1;
+    const int width = w + 2 * border, height = dims == 2 ? h + 2 * border : 1;
+    std::vector<std::uint16_t> codes(static_cast<std::size_t>(4 * width * height));
+    for (auto& c : codes) c = static_cast<std::uint16_t>(rng());
+    LevelGeometry l;
+    l.dims = dims;
+    l.width = width;
+    l.border = border;
+    l.row_border = dims == 2 ? border : 0;
+    l.w = w;
+    l.h = h;
+    l.edge_s = 1.0 / (2.0 * w);
+    l.edge_t = 1.0 / (2.0 * h);
+    l.wrap_s = wraps[rng() % 3];
+    l.wrap_t = wraps[rng() % 3];
+    const int n = 1 + static_cast<int>(rng() % 40);
+    SpanBuffers a(n), b(n);
+    FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
+    for (int i = 0; i < n; ++i) {
+      sa.s[i] = sb.s[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
+      sa.t[i] = sb.t[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
+      for (int k = 0; k < 4; ++k) sa.rgba[4 * i + k] = sb.rgba[4 * i + k] = static_cast<std::uint16_t>(rng());
+    }
+    const std::array<bool, 4> replace{rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0};
+    const std::uint64_t fa = nearest_replace_span(l, codes.data(), sa, replace, sa.live);
+    const std::uint64_t fb = nearest_replace_span_scalar(l, codes.data(), sb, replace, sb.live);
+    ASSERT_EQ(fa, fb) << round;
+    for (int i = 0; i < n; ++i) {
+      ASSERT_EQ(sa.live[i], sb.live[i]) << round << " " << i;
+      for (int k = 0; k < 4; ++k) ASSERT_EQ(sa.rgba[4 * i + k], sb.rgba[4 * i + k]) << round << " " << i << " " << k;
+    }
+    compared += static_cast<int>(fa);
+  }
+  EXPECT_GT(compared, 10000);
+}
+
 }  // namespace
 }  // namespace passim
