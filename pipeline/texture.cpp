@@ -1,5 +1,7 @@
 #include "pipeline/texture.hpp"
 
+#include <algorithm>
+
 #include "pipeline/fixed_point.hpp"
 
 namespace passim {
@@ -98,11 +100,48 @@ const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4
   // Straight from the texels (the same reals values() would hold, without keeping them).
   replace_codes.resize(texels.size());
   replace_codes_bits = bits;
-  for (std::size_t p = 0; p < texels.size(); p += 4) {
-    double o[4];
-    decode_texel(format, &texels[p], o);
-    for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = static_cast<std::uint16_t>(float_to_fixed(o[k], bits[k]));
+  auto code_of = [&](const double* o, std::size_t k) {
+    return static_cast<std::uint16_t>(float_to_fixed(o[k], bits[k]));
+  };
+  const InternalFormat& f = format;
+  const int widest = std::max({f.red, f.green, f.blue, f.alpha, f.luminance, f.intensity, f.depth});
+  const std::size_t count = texels.size() / 4, codes = std::size_t{1} << std::min(widest, 32);
+  if (widest > 16 || count <= codes) {
+    for (std::size_t p = 0; p < texels.size(); p += 4) {
+      double o[4];
+      decode_texel(format, &texels[p], o);
+      for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = code_of(o, k);
+    }
+    return replace_codes;
   }
+  // More texels than codes: each output component is a function of one stored component (or
+  // a constant), found by decoding texels with one component set; its results for every code
+  // are tabulated once and read per texel.
+  const std::uint32_t zero[4] = {0, 0, 0, 0};
+  double at_zero[4];
+  decode_texel(format, zero, at_zero);
+  std::size_t source[4] = {0, 0, 0, 0};  // a constant output reads any column: all hold it
+  for (std::size_t m = 0; m < 4; ++m) {
+    std::uint32_t one[4] = {0, 0, 0, 0};
+    one[m] = 1;
+    double o[4];
+    decode_texel(format, one, o);
+    for (std::size_t k = 0; k < 4; ++k)
+      if (o[k] != at_zero[k]) source[k] = m;
+  }
+  std::vector<std::array<std::uint16_t, 4>> table(codes);
+  for (std::size_t c = 0; c < codes; ++c) {
+    std::uint32_t t[4];
+    double o[4];
+    for (std::size_t k = 0; k < 4; ++k) {
+      std::fill(t, t + 4, 0u);
+      t[source[k]] = static_cast<std::uint32_t>(c);
+      decode_texel(format, t, o);
+      table[c][k] = code_of(o, k);
+    }
+  }
+  for (std::size_t p = 0; p < texels.size(); p += 4)
+    for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = table[texels[p + source[k]] & (codes - 1)][k];
   return replace_codes;
 }
 

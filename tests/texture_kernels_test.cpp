@@ -1,11 +1,13 @@
 // The LINEAR/REPLACE span kernel: AVX2 against its scalar reference, bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <random>
 
+#include "pipeline/fixed_point.hpp"
 #include "stages/avx2.hpp"
 #include "stages/texture_sample.hpp"
 
@@ -112,6 +114,36 @@ TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
     compared += static_cast<int>(fa);
   }
   EXPECT_GT(compared, 10000);
+}
+
+TEST(TextureKernels, ReplaceCodesByTableEqualTheDecodedTexels) {
+  // codes_at tabulates per code when a level has more texels than codes: for every base
+  // format, against float_to_fixed of the decoded reals (values()), at fragment widths
+  // narrower, equal and wider than the texel's.
+  std::mt19937 rng(29);
+  const GLint formats[] = {GL_ALPHA8, GL_LUMINANCE8, GL_LUMINANCE12_ALPHA4, GL_INTENSITY12, GL_RGB5, GL_RGBA8,
+                           GL_RGB10_A2, GL_RGBA16, GL_LUMINANCE4, GL_R3_G3_B2};
+  for (GLint internal : formats) {
+    for (const std::array<int, 4>& bits : {std::array<int, 4>{8, 8, 8, 8}, std::array<int, 4>{12, 12, 12, 12},
+                                           std::array<int, 4>{5, 6, 5, 1}, std::array<int, 4>{16, 16, 16, 16}}) {
+      TextureLevel level;
+      level.width = 256;
+      level.height = 260;  // 66,560 texels: more than the codes of a 16-bit component
+      level.format = *internal_format(internal);
+      const InternalFormat& f = level.format;
+      const int width[4] = {std::max({f.red, f.luminance, f.intensity}), f.green, f.blue, f.alpha};
+      level.texels.resize(4u * 256u * 260u);
+      for (std::size_t p = 0; p < level.texels.size(); ++p) {
+        const int w = width[p % 4];
+        level.texels[p] = w == 0 ? 0u : static_cast<std::uint32_t>(rng() % (1u << w));
+      }
+      const std::vector<double>& values = level.values();
+      const std::vector<std::uint16_t>& codes = level.codes_at(bits);
+      ASSERT_EQ(values.size(), codes.size());
+      for (std::size_t p = 0; p < codes.size(); ++p)
+        ASSERT_EQ(float_to_fixed(values[p], bits[p % 4]), codes[p]) << internal << " element " << p;
+    }
+  }
 }
 
 }  // namespace
