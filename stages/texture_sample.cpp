@@ -294,6 +294,14 @@ __attribute__((target("avx2"))) inline void wrap_index_4(__m128i i0, GLenum mode
   hi = _mm_sub_epi32(i1, _mm_andnot_si128(_mm_cmplt_epi32(i1, n), n));
 }
 
+// Four coordinates from a span, the lanes past its end (n < 4) at 0.
+__attribute__((target("avx2"))) inline __m256d load_4(const double* x, int n) {
+  if (n == 4) return _mm256_loadu_pd(x);
+  alignas(32) double padded[4] = {0, 0, 0, 0};
+  std::copy(x, x + n, padded);
+  return _mm256_load_pd(padded);
+}
+
 // Lanes whose two indices both lie in [−border, size + border): linear_footprint's test.
 __attribute__((target("avx2"))) inline __m128i stored_4(__m128i lo, __m128i hi, int border, int size) {
   const __m128i first = _mm_set1_epi32(-border - 1), end = _mm_set1_epi32(size + border);
@@ -327,19 +335,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
   std::uint64_t filtered = 0;
   for (int i0 = 0; i0 < span.count; i0 += 4) {
     const int n = std::min(4, span.count - i0);
-    __m256d s, t;
-    if (n == 4) {
-      s = _mm256_loadu_pd(span.s + i0);
-      t = _mm256_loadu_pd(span.t + i0);
-    } else {
-      alignas(32) double ps[4] = {0, 0, 0, 0}, pt[4] = {0, 0, 0, 0};
-      for (int k = 0; k < n; ++k) {
-        ps[k] = span.s[i0 + k];
-        pt[k] = span.t[i0 + k];
-      }
-      s = _mm256_load_pd(ps);
-      t = _mm256_load_pd(pt);
-    }
+    __m256d s = load_4(span.s + i0, n), t = load_4(span.t + i0, n);
     // Finite lanes: x − x is 0 exactly for finite x, NaN for NaN and ±inf. The others take
     // 0 here (their results are discarded) so that no conversion sees a NaN.
     const __m256d finite = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(s, s), zero, _CMP_EQ_OQ),
@@ -470,19 +466,7 @@ __attribute__((target("avx2"))) std::uint64_t nearest_replace_span_avx2(const Le
                    static_cast<std::size_t>(l.border));
   for (int i0 = 0; i0 < span.count; i0 += 4) {
     const int n = std::min(4, span.count - i0);
-    __m256d s, t;
-    if (n == 4) {
-      s = _mm256_loadu_pd(span.s + i0);
-      t = _mm256_loadu_pd(span.t + i0);
-    } else {
-      alignas(32) double ps[4] = {0, 0, 0, 0}, pt[4] = {0, 0, 0, 0};
-      for (int k = 0; k < n; ++k) {
-        ps[k] = span.s[i0 + k];
-        pt[k] = span.t[i0 + k];
-      }
-      s = _mm256_load_pd(ps);
-      t = _mm256_load_pd(pt);
-    }
+    __m256d s = load_4(span.s + i0, n), t = load_4(span.t + i0, n);
     // Non-finite coordinates sample at 0 (x − x is NaN exactly for NaN and ±inf).
     s = _mm256_and_pd(s, _mm256_cmp_pd(_mm256_sub_pd(s, s), zero, _CMP_EQ_OQ));
     t = _mm256_and_pd(t, _mm256_cmp_pd(_mm256_sub_pd(t, t), zero, _CMP_EQ_OQ));

@@ -14,44 +14,65 @@
 namespace passim {
 namespace {
 
+// Wrap modes, odd coordinates (REPEAT at the extremes: s − floor(s) rounds to 1 for a tiny
+// negative s; huge coordinates are whole numbers, floor_exact's std::floor branch).
+const GLenum kWraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
+const double kOdd[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                       -std::numeric_limits<double>::infinity(), -0.0, 1.0, 0.0, 0.5, -1e-17, 1e20, -4.5e15,
+                       0x1.fffffffffffffp-1, 2147483648.5};
+
+// A random 1D or 2D level of up to 16 texels a side, with or without a border, and random wraps.
+LevelGeometry random_level(std::mt19937& rng) {
+  LevelGeometry l;
+  l.dims = 1 + static_cast<int>(rng() % 2);
+  l.border = static_cast<int>(rng() % 2);
+  l.w = 1 << (rng() % 5);
+  l.h = l.dims == 2 ? 1 << (rng() % 5) : 1;
+  l.width = l.w + 2 * l.border;
+  l.row_border = l.dims == 2 ? l.border : 0;
+  l.edge_s = 1.0 / (2.0 * l.w);
+  l.edge_t = 1.0 / (2.0 * l.h);
+  l.bits_per_texel = 32;
+  l.wrap_s = kWraps[rng() % 3];
+  l.wrap_t = kWraps[rng() % 3];
+  return l;
+}
+std::size_t texel_count(const LevelGeometry& l) {
+  return static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.dims == 2 ? l.h + 2 * l.border : 1);
+}
+
+// Two identical spans of n fragments with random coordinates (some odd) and colours.
+void random_spans(std::mt19937& rng, int n, FragmentSpan& a, FragmentSpan& b) {
+  std::uniform_real_distribution<double> coord(-1.5, 2.5);
+  for (int i = 0; i < n; ++i) {
+    a.s[i] = b.s[i] = rng() % 30 == 0 ? kOdd[rng() % std::size(kOdd)] : coord(rng);
+    a.t[i] = b.t[i] = rng() % 30 == 0 ? kOdd[rng() % std::size(kOdd)] : coord(rng);
+    for (int k = 0; k < 4; ++k) a.rgba[4 * i + k] = b.rgba[4 * i + k] = static_cast<std::uint16_t>(rng());
+  }
+}
+
+// The two spans agree fragment for fragment: live flags and codes.
+void expect_same_spans(int round, int n, const FragmentSpan& a, const FragmentSpan& b) {
+  for (int i = 0; i < n; ++i) {
+    ASSERT_EQ(a.live[i], b.live[i]) << round << " " << i;
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(a.rgba[4 * i + k], b.rgba[4 * i + k]) << round << " " << i << " " << k;
+  }
+}
+
 TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor: only the scalar reference runs";
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> coord(-1.5, 2.5), texel(-0.2, 1.2);
-  const double odd[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                        -std::numeric_limits<double>::infinity(), -0.0, 1.0, 0.0, 0.5,
-                        // REPEAT at the extremes: s − floor(s) rounds to 1 for a tiny negative s;
-                        // huge coordinates are whole numbers (floor_exact's std::floor branch).
-                        -1e-17, 1e20, -4.5e15, 0x1.fffffffffffffp-1, 2147483648.5};
-  const GLenum wraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
+  std::uniform_real_distribution<double> texel(-0.2, 1.2);
   int compared = 0;
   for (int round = 0; round < 1000; ++round) {
-    const int dims = 1 + static_cast<int>(rng() % 2), border = static_cast<int>(rng() % 2);
-    const int w = 1 << (rng() % 5), h = dims == 2 ? 1 << (rng() % 5) : 1;
-    const int width = w + 2 * border, height = dims == 2 ? h + 2 * border : 1;
-    std::vector<double> values(static_cast<std::size_t>(4 * width * height));
-    for (double& v : values) v = rng() % 50 == 0 ? odd[rng() % std::size(odd)] : texel(rng);
-    LevelGeometry l;
+    LevelGeometry l = random_level(rng);
+    std::vector<double> values(4 * texel_count(l));
+    for (double& v : values) v = rng() % 50 == 0 ? kOdd[rng() % std::size(kOdd)] : texel(rng);
     l.values = values.data();
-    l.dims = dims;
-    l.width = width;
-    l.border = border;
-    l.row_border = dims == 2 ? border : 0;
-    l.w = w;
-    l.h = h;
-    l.edge_s = 1.0 / (2.0 * w);
-    l.edge_t = 1.0 / (2.0 * h);
-    l.bits_per_texel = 32;
-    l.wrap_s = wraps[rng() % 3];
-    l.wrap_t = wraps[rng() % 3];
     const int n = 1 + static_cast<int>(rng() % 40);
     SpanBuffers a(n), b(n);
     FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
-    for (int i = 0; i < n; ++i) {
-      sa.s[i] = sb.s[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
-      sa.t[i] = sb.t[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
-      for (int k = 0; k < 4; ++k) sa.rgba[4 * i + k] = sb.rgba[4 * i + k] = static_cast<std::uint16_t>(rng() % 4096);
-    }
+    random_spans(rng, n, sa, sb);
     const std::array<int, 4> bits{static_cast<int>(1 + rng() % 16), static_cast<int>(1 + rng() % 16),
                                   static_cast<int>(1 + rng() % 16), static_cast<int>(1 + rng() % 16)};
     const std::array<bool, 4> replace{rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0};
@@ -60,10 +81,7 @@ TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
     const std::uint64_t fb = linear_replace_span_scalar(l, sb, bits, replace, sb.live, cb);
     ASSERT_EQ(fa, fb) << round;
     ASSERT_TRUE(ca == cb) << round;
-    for (int i = 0; i < n; ++i) {
-      ASSERT_EQ(sa.live[i], sb.live[i]) << round << " " << i;
-      for (int k = 0; k < 4; ++k) ASSERT_EQ(sa.rgba[4 * i + k], sb.rgba[4 * i + k]) << round << " " << i << " " << k;
-    }
+    expect_same_spans(round, n, sa, sb);
     compared += static_cast<int>(fa);
   }
   EXPECT_GT(compared, 3000);
@@ -72,45 +90,20 @@ TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
 TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor: only the scalar reference runs";
   std::mt19937 rng(23);
-  std::uniform_real_distribution<double> coord(-1.5, 2.5);
-  const double odd[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                        -std::numeric_limits<double>::infinity(), -0.0, 1.0, 0.0, 0.5, -1e-17, 1e20, -4.5e15,
-                        0x1.fffffffffffffp-1, 2147483648.5};
-  const GLenum wraps[] = {GL_REPEAT, GL_CLAMP, GL_CLAMP_TO_EDGE};
   int compared = 0;
   for (int round = 0; round < 1000; ++round) {
-    const int dims = 1 + static_cast<int>(rng() % 2), border = static_cast<int>(rng() % 2);
-    const int w = 1 << (rng() % 5), h = dims == 2 ? 1 << (rng() % 5) : 1;
-    const int width = w + 2 * border, height = dims == 2 ? h + 2 * border : 1;
-    std::vector<std::uint16_t> codes(static_cast<std::size_t>(4 * width * height));
+    const LevelGeometry l = random_level(rng);
+    std::vector<std::uint16_t> codes(4 * texel_count(l));
     for (auto& c : codes) c = static_cast<std::uint16_t>(rng());
-    LevelGeometry l;
-    l.dims = dims;
-    l.width = width;
-    l.border = border;
-    l.row_border = dims == 2 ? border : 0;
-    l.w = w;
-    l.h = h;
-    l.edge_s = 1.0 / (2.0 * w);
-    l.edge_t = 1.0 / (2.0 * h);
-    l.wrap_s = wraps[rng() % 3];
-    l.wrap_t = wraps[rng() % 3];
     const int n = 1 + static_cast<int>(rng() % 40);
     SpanBuffers a(n), b(n);
     FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
-    for (int i = 0; i < n; ++i) {
-      sa.s[i] = sb.s[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
-      sa.t[i] = sb.t[i] = rng() % 30 == 0 ? odd[rng() % std::size(odd)] : coord(rng);
-      for (int k = 0; k < 4; ++k) sa.rgba[4 * i + k] = sb.rgba[4 * i + k] = static_cast<std::uint16_t>(rng());
-    }
+    random_spans(rng, n, sa, sb);
     const std::array<bool, 4> replace{rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0};
     const std::uint64_t fa = nearest_replace_span(l, codes.data(), sa, replace, sa.live);
     const std::uint64_t fb = nearest_replace_span_scalar(l, codes.data(), sb, replace, sb.live);
     ASSERT_EQ(fa, fb) << round;
-    for (int i = 0; i < n; ++i) {
-      ASSERT_EQ(sa.live[i], sb.live[i]) << round << " " << i;
-      for (int k = 0; k < 4; ++k) ASSERT_EQ(sa.rgba[4 * i + k], sb.rgba[4 * i + k]) << round << " " << i << " " << k;
-    }
+    expect_same_spans(round, n, sa, sb);
     compared += static_cast<int>(fa);
   }
   EXPECT_GT(compared, 10000);
