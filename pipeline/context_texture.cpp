@@ -752,8 +752,11 @@ FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   // The stages a primitive's fragments pass through: [texture] -> [fog] -> per-fragment ops.
   FragmentStagesSetup setup;
   setup.ops = fragment_ops_input();
+  // §4.1.5: with the depth test disabled no stage reads a fragment's depth (the stencil test
+  // then counts it as passing the depth test and the depth plane is not written), so the
+  // rasterizer need not compute it: a target without depth bits fills zeros.
   setup.target = RasterTarget{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
-                              fb_.config.depth_bits, fragment_bits_};
+                              fragment_.depth_test ? fb_.config.depth_bits : 0, fragment_bits_};
   setup.fog = options.fog = fog_.enabled;
   setup.fog_state = fog_;
   options.texcoords = false;
