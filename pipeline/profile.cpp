@@ -114,6 +114,7 @@ const std::vector<MachineProfile>& machine_profiles() {
       m.arithmetic.quantise_vertex_colors = false;
       m.arithmetic.immediate_quads_as_triangle_pairs = true;
       m.arithmetic.blend_products_rounded = true;
+      m.arithmetic.texture_filter_8_8 = true;
       m.limits.max_convolution_width = m.limits.max_convolution_height = 9;  // Mesa 6.x; llvmpipe has none
       m.sources = "measured against OSMesa 22.3.6 (tests/osmesa_check.cpp, docs/arithmetic.md)";
       p.push_back(m);

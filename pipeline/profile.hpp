@@ -50,6 +50,11 @@ struct ArithmeticOptions {
   // (A1). On: each product rounded to the colour width first, then combined — Mesa 22's 8-bit
   // blender (docs/arithmetic.md, "Against Mesa").
   bool blend_products_rounded = false;
+  // §3.8.5 gives LINEAR's weights as reals (A11). On: a level whose components are all 8 bits
+  // (no border, wrap REPEAT or CLAMP_TO_EDGE, no depth comparison) is filtered as Mesa 22's
+  // llvmpipe AoS sampler does — coordinates in 8.8 fixed point, weights of 1/256, each lerp
+  // a + ⌊(w·(b − a) + 128)/256⌋ on 8-bit codes (arithmetic.md A29, "Against Mesa").
+  bool texture_filter_8_8 = false;
 };
 
 // Rates of the cost model (docs/cost-model.md), per second; 0 = the stage is not timed.

@@ -103,8 +103,48 @@ void nearest_ij(const TextureObject& tex, const TextureLevel& level, int dims, d
   j = dims == 2 ? nearest_index(t, tex.wrap_t, edge_of(h), h) : 0;
 }
 
+// A29 (ArithmeticOptions::texture_filter_8_8): whether llvmpipe's AoS sampler would filter this
+// level — every component 8 bits (util_format_fits_8unorm for the formats GL 1.2 has), no
+// border, the "simple" wraps (REPEAT, CLAMP_TO_EDGE), no comparison.
+bool filters_in_8_8(const TextureObject& tex, const TextureLevel& level, int dims) {
+  const InternalFormat& f = level.format;
+  for (int bits : {f.red, f.green, f.blue, f.alpha, f.luminance, f.intensity})
+    if (bits != 0 && bits != 8) return false;
+  auto simple = [](GLenum wrap) { return wrap == GL_REPEAT || wrap == GL_CLAMP_TO_EDGE; };
+  return f.base != GL_DEPTH_COMPONENT && level.border == 0 && simple(tex.wrap_s) && (dims == 1 || simple(tex.wrap_t));
+}
+
+// A29: the coordinate s of a level `size` texels wide in 8.8 fixed point, less half a texel:
+// the float32 product s·(size·256) rounded to the nearest integer (ties to even, CVTPS2DQ;
+// out of range: the "integer indefinite" 0x80000000), minus 128, in 32-bit wrapping arithmetic.
+std::int32_t fixed_8_8(double s, int size) {
+  const float f = static_cast<float>(s) * static_cast<float>(size * 256);
+  const std::uint32_t rounded = f >= -2147483648.0f && f < 2147483648.0f
+                                    ? static_cast<std::uint32_t>(static_cast<std::int32_t>(std::nearbyint(f)))
+                                    : 0x80000000u;
+  return static_cast<std::int32_t>(rounded - 128u);
+}
+
+// A29: the texel index pair of a fixed-point coordinate (REPEAT: modulo the power-of-two size;
+// CLAMP_TO_EDGE: each index clamped) and its weight in 1/256.
+void indices_8_8(std::int32_t fixed, GLenum wrap, int size, int& i0, int& i1, int& weight) {
+  const int i = fixed >> 8;  // floor (arithmetic shift, C++20)
+  weight = fixed & 255;
+  if (wrap == GL_REPEAT) {
+    i0 = i & (size - 1);
+    i1 = (i + 1) & (size - 1);
+  } else {
+    i0 = std::clamp(i, 0, size - 1);
+    i1 = std::clamp(i + 1, 0, size - 1);
+  }
+}
+
+// A29: one lerp of 8-bit codes with a weight in 1/256, rounded as PMULHRSW rounds:
+// a + ⌊(w·(b − a) + 128)/256⌋ (which lies between a and b).
+inline int lerp_8_8(int weight, int a, int b) { return a + ((weight * (b - a) + 128) >> 8); }
+
 TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int dims, GLenum filter, double s,
-                        double t, double r, Counters& counters) {
+                        double t, double r, Counters& counters, bool filter_8_8) {
   const Fetch fetch{tex, level, counters};
   const int w = level.width - 2 * level.border, h = dims == 2 ? level.height - 2 * level.border : 1;
   const double ws = wrap_coordinate(s, tex.wrap_s, w);
@@ -129,6 +169,24 @@ TexelValue filter_level(const TextureObject& tex, const TextureLevel& level, int
       c = {x, x, x, x};
     }
     out = c;
+  } else if (filter_8_8 && !cmp && filters_in_8_8(tex, level, dims)) {
+    int i0, i1, j0 = 0, j1 = 0, ws8, wt8 = 0;
+    indices_8_8(fixed_8_8(s, w), tex.wrap_s, w, i0, i1, ws8);
+    if (dims == 2) indices_8_8(fixed_8_8(t, h), tex.wrap_t, h, j0, j1, wt8);
+    // The codes: every component is 8 bits (absent ones read 0 or 1: codes 0 or 255).
+    auto codes = [&](int i, int j) {
+      const std::array<double, 4> c = fetch.texel(i, j);
+      std::array<int, 4> k;
+      for (std::size_t n = 0; n < 4; ++n) k[n] = static_cast<int>(std::lround(c[n] * 255.0));
+      return k;
+    };
+    const auto c00 = codes(i0, j0), c10 = codes(i1, j0);
+    const auto c01 = dims == 2 ? codes(i0, j1) : c00, c11 = dims == 2 ? codes(i1, j1) : c10;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int row0 = lerp_8_8(ws8, c00[k], c10[k]);
+      const int code = dims == 2 ? lerp_8_8(wt8, row0, lerp_8_8(ws8, c01[k], c11[k])) : row0;
+      out[k] = static_cast<double>(code) / 255.0;
+    }
   } else {
     const double uu = u - 0.5, vv = v - 0.5;
     const int i0 = static_cast<int>(floor_exact(uu)), j0 = dims == 2 ? static_cast<int>(floor_exact(vv)) : 0;
@@ -506,7 +564,7 @@ std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* 
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,
-                          int last_level, Counters& counters) {
+                          int last_level, Counters& counters, bool filter_8_8) {
   ++counters.texture_lookups;
   // Non-finite coordinates (q = 0, overflow) are undefined in GL; they sample at 0 here.
   if (!std::isfinite(s)) s = 0.0;
@@ -519,11 +577,11 @@ TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t
                     (tex.min_filter == GL_NEAREST_MIPMAP_NEAREST || tex.min_filter == GL_NEAREST_MIPMAP_LINEAR))
                        ? 0.5
                        : 0.0;
-  if (lambda <= c) return filter_level(tex, tex.levels[b], dims, tex.mag_filter, s, t, r, counters);
+  if (lambda <= c) return filter_level(tex, tex.levels[b], dims, tex.mag_filter, s, t, r, counters, filter_8_8);
   switch (tex.min_filter) {
     case GL_NEAREST:
     case GL_LINEAR:
-      return filter_level(tex, tex.levels[b], dims, tex.min_filter, s, t, r, counters);
+      return filter_level(tex, tex.levels[b], dims, tex.min_filter, s, t, r, counters, filter_8_8);
     case GL_NEAREST_MIPMAP_NEAREST:
     case GL_LINEAR_MIPMAP_NEAREST: {
       // A9: d = b if λ <= 1/2, else ceil(b + λ + 1/2) − 1, at most q.
@@ -531,17 +589,17 @@ TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t
       int d = lambda <= 0.5 ? b : !(lambda < 64.0) ? last_level : static_cast<int>(std::ceil(b + lambda + 0.5)) - 1;
       d = std::min(d, last_level);
       const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_NEAREST ? GL_NEAREST : GL_LINEAR;
-      return filter_level(tex, tex.levels[d], dims, f, s, t, r, counters);
+      return filter_level(tex, tex.levels[d], dims, f, s, t, r, counters, filter_8_8);
     }
     default: {
       // *_MIPMAP_LINEAR: d1 = floor(b + λ), d2 = d1 + 1 (both q when b + λ >= q).
       const GLenum f = tex.min_filter == GL_NEAREST_MIPMAP_LINEAR ? GL_NEAREST : GL_LINEAR;
       const double bl = b + lambda;
-      if (bl >= last_level) return filter_level(tex, tex.levels[last_level], dims, f, s, t, r, counters);
+      if (bl >= last_level) return filter_level(tex, tex.levels[last_level], dims, f, s, t, r, counters, filter_8_8);
       const int d1 = static_cast<int>(floor_exact(bl));
       const double frac = bl - floor_exact(bl);
-      const TexelValue t1 = filter_level(tex, tex.levels[d1], dims, f, s, t, r, counters);
-      const TexelValue t2 = filter_level(tex, tex.levels[d1 + 1], dims, f, s, t, r, counters);
+      const TexelValue t1 = filter_level(tex, tex.levels[d1], dims, f, s, t, r, counters, filter_8_8);
+      const TexelValue t2 = filter_level(tex, tex.levels[d1 + 1], dims, f, s, t, r, counters, filter_8_8);
       return {(1.0 - frac) * t1.r + frac * t2.r, (1.0 - frac) * t1.g + frac * t2.g, (1.0 - frac) * t1.b + frac * t2.b,
               (1.0 - frac) * t1.a + frac * t2.a};
     }

@@ -58,7 +58,8 @@ std::uint64_t linear_replace_span_scalar(const LevelGeometry& level, const Fragm
 
 // Samples the texture at (s, t) (already divided by q) with level-of-detail λ; `r` is the
 // fragment's r/q for depth comparison. `dims` is 1 or 2.
+// `filter_8_8`: ArithmeticOptions::texture_filter_8_8 (LINEAR on 8-bit levels in 8.8 fixed point).
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,
-                          int last_level, Counters& counters);
+                          int last_level, Counters& counters, bool filter_8_8 = false);
 
 }  // namespace passim

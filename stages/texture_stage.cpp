@@ -38,7 +38,8 @@ void TextureStage::process(FragmentSpan& span) {
   const double* values[4] = {code_values(bits[0]), code_values(bits[1]), code_values(bits[2]), code_values(bits[3])};
   auto general = [&](int i) {
     const TexelValue tv =
-        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters);
+        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters,
+                       setup_.filter_8_8);
     std::uint16_t* c = span.rgba + 4 * i;
     const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
     const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
@@ -74,7 +75,8 @@ void TextureStage::process(FragmentSpan& span) {
   // filter is sample_texture's (linear_replace_span shares its expressions); REPLACE
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
   // reaches the border colour, or whose coordinates are not finite, take the general path.
-  const bool fast_linear = !general_path_only && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
+  const bool fast_linear = !general_path_only && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR &&
+                           tex.mag_filter == GL_LINEAR &&
                            setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
   if (fast_linear) {
     // span.live is the per-fragment operations' scratch; they set it afresh.

@@ -20,6 +20,7 @@ struct TextureStageSetup {
   GLenum env_mode = GL_MODULATE;
   Vec4 env_color{0.0, 0.0, 0.0, 0.0};
   std::array<int, 4> fragment_bits{8, 8, 8, 8};
+  bool filter_8_8 = false;  // ArithmeticOptions::texture_filter_8_8
   bool operator==(const TextureStageSetup&) const = default;
 };
 

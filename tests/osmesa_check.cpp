@@ -307,5 +307,5 @@ Stats compare(F scene, const char* name) {
 
 SCENE_TEST(lit_geometry, true)
 SCENE_TEST(texgen_ramp, true)
-SCENE_TEST(projective_reverse_subtract, false)
+SCENE_TEST(projective_reverse_subtract, true)
 SCENE_TEST(masks_and_equations, true)

@@ -61,6 +61,42 @@ TEST(Texture, LinearSamplingOfA2x2Texture) {
     }
 }
 
+TEST(Texture, LinearFilterIn8_8FixedPointInTheMesaProfile) {
+  // A29, by hand, on the 2×2 LUMINANCE8 texture above (τ00 = 0, τ10 = 255, τ01 = 51, τ11 = 102):
+  // (0.5, 0.5): s·512 = 256, less 128: index 0, weight 128 (t alike).
+  //   row 0: 0 + ⌊(128·255 + 128)/256⌋ = 128;  row 1: 51 + ⌊(128·51 + 128)/256⌋ = 51 + 26 = 77;
+  //   rows: 128 + ⌊(128·(77 − 128) + 128)/256⌋ = 128 + ⌊−25⌋ = 103 — the spec's reals give 0.4 -> 102.
+  // (0.5009765625, 0.5009765625): s·512 = 256.5, a tie, rounded to even: 256 — the same 103
+  //   (rounded up, 257, the weight 129 would give 102).
+  // A 12-bit framebuffer receives 103/255: 1654.06 -> 1654 (the spec's 0.4: 1638).
+  // The filter applies to 8-bit components only: LUMINANCE12 (or a CLAMP wrap) keeps the spec's
+  // arithmetic, 102.
+  const GLubyte texels[4] = {0, 255, 51, 102};
+  struct Case { float s, t; GLint internal; GLenum wrap; int bits; std::uint32_t code; };
+  const Case cases[] = {{0.5f, 0.5f, GL_LUMINANCE8, GL_CLAMP_TO_EDGE, 8, 103},
+                        {0.5009765625f, 0.5009765625f, GL_LUMINANCE8, GL_REPEAT, 8, 103},
+                        {0.5f, 0.5f, GL_LUMINANCE8, GL_CLAMP_TO_EDGE, 12, 1654},
+                        {0.5f, 0.5f, GL_LUMINANCE12, GL_CLAMP_TO_EDGE, 8, 102},
+                        {0.5f, 0.5f, GL_LUMINANCE8, GL_CLAMP, 8, 102}};
+  const MachineProfile* mesa = find_profile("mesa-llvmpipe");
+  ASSERT_NE(mesa, nullptr);
+  ASSERT_TRUE(mesa->arithmetic.texture_filter_8_8);
+  for (const Case& c : cases) {
+    Context ctx(test::small_config(1, 1, c.bits), *mesa);
+    test::window_projection(ctx);
+    ctx.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    ctx.glTexImage2D(GL_TEXTURE_2D, 0, c.internal, 2, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, texels);
+    ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, static_cast<GLint>(c.wrap));
+    ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, static_cast<GLint>(c.wrap));
+    ctx.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    ctx.glEnable(GL_TEXTURE_2D);
+    textured_pixel(ctx, c.s, c.t);
+    EXPECT_EQ(pixel(ctx, 0, 0)[0], c.code) << c.s << " format " << c.internal << " wrap " << c.wrap << " bits " << c.bits;
+    EXPECT_EQ(ctx.total_counters().texels_fetched, 4u);
+  }
+}
+
 TEST(Texture, WrapModesAtTheEdges) {
   // 1D LUMINANCE8 ramp {0, 85, 170, 255}, border colour 1. Values at s = 0 and s = 1 (8-bit codes):
   //  LINEAR REPEAT:        s=0: i0 = −1 -> 3 (1.0), i1 = 0 (0), α = ½ -> 0.5 -> 128; s=1 wraps to 0: 128.
