@@ -452,11 +452,15 @@ class Context {
   struct SourceCodes {
     int width = 0, height = 0;
     int i_lo = 0, i_hi = 0, j_lo = 0, j_hi = 0;  // the part inside the window
-    std::vector<std::uint16_t> codes;            // 4 per pixel of that part, rows bottom first
+    const std::uint16_t* first = nullptr;        // codes of pixel (i_lo, j_lo), 4 per pixel
+    std::size_t stride = 0;                      // codes from one row to the next (rows bottom first)
     const double* values[4] = {};                // code -> value per channel; nullptr: no bits (1)
     void to_reals(int first_row, int rows, Rgba* out) const;
   };
-  SourceCodes read_framebuffer_codes(int x, int y, int width, int height) const;
+  // `copy`: the codes are copied there (A22: a copy that draws reads its whole source first;
+  // the vector keeps its storage between calls); null: they are read in place, and the read
+  // buffer must not change while they are used.
+  SourceCodes read_framebuffer_codes(int x, int y, int width, int height, std::vector<std::uint16_t>* copy) const;
   // The attributes every pixel-rectangle and bitmap fragment takes from the raster position.
   struct RasterFragments {
     std::uint16_t codes[4];

@@ -328,7 +328,7 @@ void Context::read_for_texture(bool depth, int dims, int x, int y, int width, in
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
     int w = width, h = height;
-    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims)) rgba.clear();
+    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims, &scratch_->rectangle_spare)) rgba.clear();
   }
 }
 
@@ -372,7 +372,8 @@ void Context::glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint y
   tex_sub_image(target, 2, level, xoffset, yoffset, width, height, format, type, pixels);
 }
 
-Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, int height) const {
+Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, int height,
+                                                     std::vector<std::uint16_t>* copy) const {
   SourceCodes src;
   src.width = width;
   src.height = height;
@@ -386,12 +387,21 @@ Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, in
   inside(x, width, fb_.width(), src.i_lo, src.i_hi);
   inside(y, height, fb_.height(), src.j_lo, src.j_hi);
   const std::size_t row = 4 * static_cast<std::size_t>(src.i_hi - src.i_lo);
-  src.codes.resize(row * static_cast<std::size_t>(src.j_hi - src.j_lo));
+  if (row == 0 || src.j_hi <= src.j_lo) return src;
   const ColorPlane* plane = color_buffer(pixel_.read_buffer);
-  for (int j = src.j_lo; j < src.j_hi && row > 0; ++j) {
-    const std::uint16_t* c = &plane->rgba[4 * fb_.pixel_index(x + src.i_lo, y + j)];
-    std::copy_n(c, row, src.codes.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(j - src.j_lo)));
+  const std::uint16_t* origin = &plane->rgba[4 * fb_.pixel_index(x + src.i_lo, y + src.j_lo)];
+  const std::size_t plane_stride = 4 * static_cast<std::size_t>(fb_.width());
+  if (!copy) {
+    src.first = origin;
+    src.stride = plane_stride;
+    return src;
   }
+  copy->resize(row * static_cast<std::size_t>(src.j_hi - src.j_lo));
+  for (int j = 0; j < src.j_hi - src.j_lo; ++j)
+    std::copy_n(origin + plane_stride * static_cast<std::size_t>(j), row,
+                copy->begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(j)));
+  src.first = copy->data();
+  src.stride = row;
   return src;
 }
 
@@ -405,14 +415,15 @@ void Context::SourceCodes::to_reals(int first_row, int rows, Rgba* out) const {
     }
     std::fill(o, o + i_lo, Rgba{0, 0, 0, 0});
     std::fill(o + i_hi, o + w, Rgba{0, 0, 0, 0});
-    const std::uint16_t* c = codes.data() + 4 * static_cast<std::size_t>(i_hi - i_lo) * static_cast<std::size_t>(j - j_lo);
+    const std::uint16_t* c = first + stride * static_cast<std::size_t>(j - j_lo);
     for (int i = i_lo; i < i_hi; ++i, c += 4)
       for (int k = 0; k < 4; ++k) o[i][static_cast<std::size_t>(k)] = values[k] ? values[k][c[k]] : 1.0;
   }
 }
 
 void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const {
-  const SourceCodes src = read_framebuffer_codes(x, y, width, height);
+  // Read in place: nothing draws between the reading and the conversion.
+  const SourceCodes src = read_framebuffer_codes(x, y, width, height, nullptr);
   out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   src.to_reals(0, height, out.data());
 }
@@ -439,8 +450,8 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
             f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
   if (error_log_.size() != errors) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
-  std::vector<Rgba> rgba;
-  std::vector<double> depth;
+  std::vector<Rgba>& rgba = scratch_->rectangle;  // kept between calls: no fresh pages per copy
+  std::vector<double>& depth = scratch_->depth_rectangle;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
   read_for_texture(is_depth, dims, x, y, width, dims == 2 ? height : 1, rgba, depth);
@@ -473,8 +484,8 @@ void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xof
   TextureLevel& l = *level_ptr;
   const int b = l.border;
   if (width <= 0 || height <= 0) return;
-  std::vector<Rgba> rgba;
-  std::vector<double> depth;
+  std::vector<Rgba>& rgba = scratch_->rectangle;  // kept between calls: no fresh pages per copy
+  std::vector<double>& depth = scratch_->depth_rectangle;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   read_for_texture(is_depth, dims, x, y, source_width, source_height, rgba, depth);
   if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
