@@ -481,36 +481,29 @@ std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& sp
   return linear_replace_span_scalar(l, span, bits, replace, general, counters);
 }
 
-std::uint64_t nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
-                                          const std::array<bool, 4>& replace, std::uint8_t* general) {
-  const int b = l.border, bj = l.row_border, w = l.w, h = l.h;
-  std::uint64_t fetched = 0;
+void nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
+                                 const std::array<bool, 4>& replace) {
   for (int n = 0; n < span.count; ++n) {
     const double s = std::isfinite(span.s[n]) ? span.s[n] : 0.0;  // as sample_texture
     const double t = std::isfinite(span.t[n]) ? span.t[n] : 0.0;
-    const int i = nearest_index(s, l.wrap_s, l.edge_s, w);
-    const int j = l.dims == 2 ? nearest_index(t, l.wrap_t, l.edge_t, h) : 0;
-    general[n] = i < -b || i >= w + b || j < -bj || j >= h + bj;
-    if (general[n]) continue;
-    ++fetched;
-    const std::uint16_t* texel =
-        codes + 4 * (static_cast<std::size_t>(j + bj) * static_cast<std::size_t>(l.width) + static_cast<std::size_t>(i + b));
+    // Every wrap mode puts the coordinate in [0, 1], so nearest_index lies in [0, size − 1]:
+    // a stored texel, never the border or the border colour.
+    const int i = nearest_index(s, l.wrap_s, l.edge_s, l.w);
+    const int j = l.dims == 2 ? nearest_index(t, l.wrap_t, l.edge_t, l.h) : 0;
+    const std::uint16_t* texel = codes + 4 * (static_cast<std::size_t>(j + l.row_border) * static_cast<std::size_t>(l.width) +
+                                              static_cast<std::size_t>(i + l.border));
     std::uint16_t* c = span.rgba + 4 * n;
     for (int k = 0; k < 4; ++k)
       if (replace[static_cast<std::size_t>(k)]) c[k] = texel[k];
   }
-  return fetched;
 }
 
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
 // NEAREST on four fragments at a time: the wrapped coordinate lies in [0, 1] under every wrap
-// mode, so floor(u) clamped to size − 1 is a stored texel's index (wrap_index leaves it alone),
-// and no fragment needs the border colour.
-__attribute__((target("avx2"))) std::uint64_t nearest_replace_span_avx2(const LevelGeometry& l,
-                                                                        const std::uint16_t* codes,
-                                                                        const FragmentSpan& span,
-                                                                        const std::array<bool, 4>& replace,
-                                                                        std::uint8_t* general) {
+// mode, so floor(u) clamped to size − 1 is a stored texel's index (wrap_index leaves it alone).
+__attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeometry& l, const std::uint16_t* codes,
+                                                               const FragmentSpan& span,
+                                                               const std::array<bool, 4>& replace) {
   std::uint64_t keep = 0;  // the bits of the four 16-bit codes that REPLACE leaves alone
   for (int k = 0; k < 4; ++k)
     if (!replace[static_cast<std::size_t>(k)]) keep |= std::uint64_t{0xffff} << (16 * k);
@@ -542,7 +535,6 @@ __attribute__((target("avx2"))) std::uint64_t nearest_replace_span_avx2(const Le
                                                           _mm256_cvtepi32_epi64(i)),
                                          2));
     for (int k = 0; k < n; ++k) {
-      general[i0 + k] = 0;
       std::uint64_t texel = 0, old = 0;
       std::memcpy(&texel, origin + offset[k], sizeof texel);
       std::uint16_t* c = span.rgba + 4 * (i0 + k);
@@ -551,16 +543,15 @@ __attribute__((target("avx2"))) std::uint64_t nearest_replace_span_avx2(const Le
       std::memcpy(c, &now, sizeof now);
     }
   }
-  return static_cast<std::uint64_t>(span.count);
 }
 #endif
 
-std::uint64_t nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
-                                   const std::array<bool, 4>& replace, std::uint8_t* general) {
+void nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
+                          const std::array<bool, 4>& replace) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  if (cpu_has_avx2()) return nearest_replace_span_avx2(l, codes, span, replace, general);
+  if (cpu_has_avx2()) return nearest_replace_span_avx2(l, codes, span, replace);
 #endif
-  return nearest_replace_span_scalar(l, codes, span, replace, general);
+  nearest_replace_span_scalar(l, codes, span, replace);
 }
 
 TexelValue sample_texture(const TextureObject& tex, int dims, double s, double t, double r, double lambda,

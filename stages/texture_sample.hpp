@@ -35,16 +35,15 @@ struct LevelGeometry {
 };
 LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values = true);
 // NEAREST over a span (§3.8.5, the fast path): each fragment's texel after wrapping
-// (non-finite coordinates at 0, as sample_texture); where it is a stored texel, the codes of
-// `codes` (4 per stored texel, TextureLevel::codes_at) that `replace` selects are copied and
-// general[i] = 0; where it is the border colour, general[i] = 1. Returns the texels fetched.
-// The AVX2 kernel (run-time choice) and the scalar reference give the same codes
+// (non-finite coordinates at 0, as sample_texture) — always a stored texel, as every wrap mode
+// puts the coordinate in [0, 1] — and of its codes in `codes` (4 per stored texel,
+// TextureLevel::codes_at) those `replace` selects are copied into the fragment. The AVX2
+// kernel (run-time choice) and the scalar reference give the same codes
 // (`TextureKernels.NearestReplaceAvx2EqualsScalar`).
-std::uint64_t nearest_replace_span(const LevelGeometry& level, const std::uint16_t* codes, const FragmentSpan& span,
-                                   const std::array<bool, 4>& replace, std::uint8_t* general);
-std::uint64_t nearest_replace_span_scalar(const LevelGeometry& level, const std::uint16_t* codes,
-                                          const FragmentSpan& span, const std::array<bool, 4>& replace,
-                                          std::uint8_t* general);
+void nearest_replace_span(const LevelGeometry& level, const std::uint16_t* codes, const FragmentSpan& span,
+                          const std::array<bool, 4>& replace);
+void nearest_replace_span_scalar(const LevelGeometry& level, const std::uint16_t* codes, const FragmentSpan& span,
+                                 const std::array<bool, 4>& replace);
 // Over a span: where the footprint is stored texels, the filtered components `replace`
 // selects become float_to_fixed at `bits` (REPLACE with A4's rounding) and general[i] = 0;
 // elsewhere general[i] = 1 and nothing is written or counted. Returns the fragments filtered.

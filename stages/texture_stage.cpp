@@ -24,9 +24,13 @@ bool nearest_replace(const TextureObject& tex, const TextureLevel& base, GLenum 
 
 void TextureStage::make_caches(const TextureStageSetup& setup) {
   const TextureObject& tex = *setup.texture;
-  for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
-  if (nearest_replace(tex, base, setup.env_mode)) base.codes_at(setup.fragment_bits);
+  // The NEAREST fast path reads the codes alone (it never falls back to the general sampler).
+  if (nearest_replace(tex, base, setup.env_mode)) {
+    base.codes_at(setup.fragment_bits);
+    return;
+  }
+  for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();
 }
 
 void TextureStage::process(FragmentSpan& span) {
@@ -57,13 +61,10 @@ void TextureStage::process(FragmentSpan& span) {
   if (nearest_replace(tex, base, setup_.env_mode)) {
     const std::vector<std::uint16_t>& codes = base.codes_at(bits);
     const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
-    // span.live is the per-fragment operations' scratch; they set it afresh.
-    const std::uint64_t fetched = nearest_replace_span(level_geometry(tex, base, setup_.dims, false), codes.data(), span,
-                                                       {color, color, color, alpha}, span.live);
-    // The border colour: the general arithmetic (λ chooses nothing: both filters NEAREST).
-    if (fetched < static_cast<std::uint64_t>(span.count))
-      for (int i = 0; i < span.count; ++i)
-        if (span.live[i]) general(i);
+    // Every fragment reads a stored texel (never the border colour): no general fallback, so
+    // the level's reals (TextureLevel::values) are not needed.
+    nearest_replace_span(level_geometry(tex, base, setup_.dims, false), codes.data(), span, {color, color, color, alpha});
+    const std::uint64_t fetched = static_cast<std::uint64_t>(span.count);
     fast_path_fragments += fetched;
     counters.texture_lookups += fetched;
     counters.texels_fetched += fetched;

@@ -100,11 +100,10 @@ TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
     FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
     random_spans(rng, n, sa, sb);
     const std::array<bool, 4> replace{rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0, rng() % 4 != 0};
-    const std::uint64_t fa = nearest_replace_span(l, codes.data(), sa, replace, sa.live);
-    const std::uint64_t fb = nearest_replace_span_scalar(l, codes.data(), sb, replace, sb.live);
-    ASSERT_EQ(fa, fb) << round;
+    nearest_replace_span(l, codes.data(), sa, replace);
+    nearest_replace_span_scalar(l, codes.data(), sb, replace);
     expect_same_spans(round, n, sa, sb);
-    compared += static_cast<int>(fa);
+    compared += n;
   }
   EXPECT_GT(compared, 10000);
 }
