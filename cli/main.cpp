@@ -15,6 +15,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "pipeline/allocator.hpp"
 #include "pipeline/apitrace_replay.hpp"
 #include "pipeline/calls.hpp"
 #include "pipeline/image_io.hpp"
@@ -316,6 +317,7 @@ int demo_command(const fs::path& out, const std::string& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  passim::keep_large_blocks_in_the_heap();
   CLI::App app{"passim: a bit-accurate model of the OpenGL 1.2 + imaging pipeline, for multipass algorithms"};
   app.require_subcommand(0, 1);
   app.footer("Exit status: 0 ok, 1 trace or run error (message names file:line), 2 usage, "

@@ -457,9 +457,8 @@ class Context {
     const double* values[4] = {};                // code -> value per channel; nullptr: no bits (1)
     void to_reals(int first_row, int rows, Rgba* out) const;
   };
-  // `copy`: the codes are copied there (A22: a copy that draws reads its whole source first;
-  // the vector keeps its storage between calls); null: they are read in place, and the read
-  // buffer must not change while they are used.
+  // `copy`: the codes are copied there (A22: a copy that draws reads its whole source first);
+  // null: they are read in place, and the read buffer must not change while they are used.
   SourceCodes read_framebuffer_codes(int x, int y, int width, int height, std::vector<std::uint16_t>* copy) const;
   // The attributes every pixel-rectangle and bitmap fragment takes from the raster position.
   struct RasterFragments {

@@ -470,7 +470,8 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
                          static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
-    const SourceCodes source = read_framebuffer_codes(x, y, width, height, &scratch_->source_codes);
+    std::vector<std::uint16_t> copy;
+    const SourceCodes source = read_framebuffer_codes(x, y, width, height, &copy);
     if (active_convolution(transfer_, 2)) {
       // A convolution needs its neighbours: the whole rectangle as reals, in buffers kept
       // between calls (a fresh 32-byte-a-pixel buffer per call costs more than the filter).

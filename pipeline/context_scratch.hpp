@@ -22,8 +22,6 @@ struct Context::Scratch {
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of
   // the whole window does not map and fault in fresh pages each time.
   std::vector<Rgba> rectangle, rectangle_spare;
-  std::vector<double> depth_rectangle;
-  std::vector<std::uint16_t> source_codes;  // glCopyPixels's source, read whole (A22)
 };
 
 }  // namespace passim

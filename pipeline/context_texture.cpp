@@ -328,7 +328,7 @@ void Context::read_for_texture(bool depth, int dims, int x, int y, int width, in
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
     int w = width, h = height;
-    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims, &scratch_->rectangle_spare)) rgba.clear();
+    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims)) rgba.clear();
   }
 }
 
@@ -450,8 +450,8 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
             f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
   if (error_log_.size() != errors) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
-  std::vector<Rgba>& rgba = scratch_->rectangle;  // kept between calls: no fresh pages per copy
-  std::vector<double>& depth = scratch_->depth_rectangle;
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
   read_for_texture(is_depth, dims, x, y, width, dims == 2 ? height : 1, rgba, depth);
@@ -484,8 +484,8 @@ void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xof
   TextureLevel& l = *level_ptr;
   const int b = l.border;
   if (width <= 0 || height <= 0) return;
-  std::vector<Rgba>& rgba = scratch_->rectangle;  // kept between calls: no fresh pages per copy
-  std::vector<double>& depth = scratch_->depth_rectangle;
+  std::vector<Rgba> rgba;
+  std::vector<double> depth;
   const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   read_for_texture(is_depth, dims, x, y, source_width, source_height, rgba, depth);
   if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
