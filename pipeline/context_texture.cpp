@@ -791,8 +791,8 @@ FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   options.min_lod = tex.min_lod;
   options.max_lod = tex.max_lod;
   setup.texture = true;
-  setup.texture_setup = TextureStageSetup{&tex,        dims,          last, textures_.env_mode, textures_.env_color,
-                                          fragment_bits_, profile_.arithmetic.texture_filter_8_8};
+  setup.texture_setup = TextureStageSetup{
+      &tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_, profile_.arithmetic.texture_filter_8_8};
   return setup;
 }
 

@@ -76,9 +76,10 @@ void TextureStage::process(FragmentSpan& span) {
   // filter is sample_texture's (linear_replace_span shares its expressions); REPLACE
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
   // reaches the border colour, or whose coordinates are not finite, take the general path.
+  // (Not under A29's 8.8 filter, which the general sampler alone implements.)
   const bool fast_linear = !general_path_only && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR &&
-                           tex.mag_filter == GL_LINEAR &&
-                           setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
+                           tex.mag_filter == GL_LINEAR && setup_.env_mode == GL_REPLACE &&
+                           base.format.base != GL_DEPTH_COMPONENT;
   if (fast_linear) {
     // span.live is the per-fragment operations' scratch; they set it afresh.
     const std::uint64_t filtered = linear_replace_span(level_geometry(tex, base, setup_.dims), span, bits,
