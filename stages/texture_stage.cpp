@@ -33,43 +33,29 @@ void TextureStage::make_caches(const TextureStageSetup& setup) {
   for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();
 }
 
-void TextureStage::process(FragmentSpan& span) {
+void TextureStage::configure(const TextureStageSetup& setup, FragmentSink& next) {
+  setup_ = setup;
+  next_ = &next;
   const TextureObject& tex = *setup_.texture;
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
-  const GLenum env_base = base.format.base == GL_DEPTH_COMPONENT ? tex.depth_texture_mode : base.format.base;
   const auto& bits = setup_.fragment_bits;
-  Counters& counters = *counters_;
-  const double* values[4] = {code_values(bits[0]), code_values(bits[1]), code_values(bits[2]), code_values(bits[3])};
-  auto general = [&](int i) {
-    const TexelValue tv =
-        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters,
-                       setup_.filter_8_8);
-    std::uint16_t* c = span.rgba + 4 * i;
-    const Vec4 cf(values[0][c[0]], values[1][c[1]], values[2][c[2]], values[3][c[3]]);
-    const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
-    // A4: the textured colour is rounded to the fragment colour width.
-    for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
-  };
+  for (std::size_t k = 0; k < 4; ++k) fragment_values_[k] = code_values(bits[k]);
   // REPLACE (Table 3.18): which components the texture replaces, for both fast paths.
+  const GLenum env_base = base.format.base == GL_DEPTH_COMPONENT ? tex.depth_texture_mode : base.format.base;
   const bool color = env_base != GL_ALPHA;
   const bool alpha =
       env_base == GL_ALPHA || env_base == GL_LUMINANCE_ALPHA || env_base == GL_RGBA || env_base == GL_INTENSITY;
+  replace_ = {color, color, color, alpha};
   // Fast path: NEAREST at every λ on the base level, no comparison, REPLACE. The texel's
   // replacing components become float_to_fixed(texel value) at the fragment's widths
   // (Table 3.18 with A4's rounding), the others stay: the general path's arithmetic with
-  // each texel's result computed once (TextureLevel::codes_at).
+  // each texel's result computed once (TextureLevel::codes_at). Every fragment reads a
+  // stored texel (never the border colour): no general fallback, so the level's reals
+  // (TextureLevel::values) are not needed.
   if (nearest_replace(tex, base, setup_.env_mode)) {
-    const std::vector<std::uint16_t>& codes = base.codes_at(bits);
-    const std::uint64_t texel_bits = static_cast<std::uint64_t>(base.bits_per_texel());
-    // Every fragment reads a stored texel (never the border colour): no general fallback, so
-    // the level's reals (TextureLevel::values) are not needed.
-    nearest_replace_span(level_geometry(tex, base, setup_.dims, false), codes.data(), span, {color, color, color, alpha});
-    const std::uint64_t fetched = static_cast<std::uint64_t>(span.count);
-    fast_path_fragments += fetched;
-    counters.texture_lookups += fetched;
-    counters.texels_fetched += fetched;
-    counters.texture_bits_read += fetched * texel_bits;
-    next_->process(span);
+    path_ = Path::kNearestReplace;
+    geometry_ = level_geometry(tex, base, setup_.dims, false);
+    codes_ = base.codes_at(bits).data();
     return;
   }
   // Fast path: LINEAR for both filters (so λ chooses nothing), no comparison, REPLACE. The
@@ -77,13 +63,45 @@ void TextureStage::process(FragmentSpan& span) {
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
   // reaches the border colour, or whose coordinates are not finite, take the general path.
   // (Not under A29's 8.8 filter, which the general sampler alone implements.)
-  const bool fast_linear = !general_path_only && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR &&
-                           tex.mag_filter == GL_LINEAR && setup_.env_mode == GL_REPLACE &&
-                           base.format.base != GL_DEPTH_COMPONENT;
-  if (fast_linear) {
+  if (!general_path_only && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
+      setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT) {
+    path_ = Path::kLinearReplace;
+    geometry_ = level_geometry(tex, base, setup_.dims);
+    return;
+  }
+  path_ = Path::kGeneral;
+}
+
+void TextureStage::process(FragmentSpan& span) {
+  const TextureObject& tex = *setup_.texture;
+  const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
+  const auto& bits = setup_.fragment_bits;
+  Counters& counters = *counters_;
+  if (path_ == Path::kNearestReplace) {
+    nearest_replace_span(geometry_, codes_, span, replace_);
+    const std::uint64_t fetched = static_cast<std::uint64_t>(span.count);
+    fast_path_fragments += fetched;
+    counters.texture_lookups += fetched;
+    counters.texels_fetched += fetched;
+    counters.texture_bits_read += fetched * static_cast<std::uint64_t>(geometry_.bits_per_texel);
+    next_->process(span);
+    return;
+  }
+  const GLenum env_base = base.format.base == GL_DEPTH_COMPONENT ? tex.depth_texture_mode : base.format.base;
+  auto general = [&](int i) {
+    const TexelValue tv =
+        sample_texture(tex, setup_.dims, span.s[i], span.t[i], span.r[i], span.lambda[i], setup_.last_level, counters,
+                       setup_.filter_8_8);
+    std::uint16_t* c = span.rgba + 4 * i;
+    const Vec4 cf(fragment_values_[0][c[0]], fragment_values_[1][c[1]], fragment_values_[2][c[2]],
+                  fragment_values_[3][c[3]]);
+    const Vec4 out = apply_texture_env(setup_.env_mode, env_base, cf, tv, setup_.env_color);
+    // A4: the textured colour is rounded to the fragment colour width.
+    for (int k = 0; k < 4; ++k) c[k] = static_cast<std::uint16_t>(float_to_fixed(out[k], bits[k]));
+  };
+  if (path_ == Path::kLinearReplace) {
     // span.live is the per-fragment operations' scratch; they set it afresh.
-    const std::uint64_t filtered = linear_replace_span(level_geometry(tex, base, setup_.dims), span, bits,
-                                                       {color, color, color, alpha}, span.live, counters);
+    const std::uint64_t filtered = linear_replace_span(geometry_, span, bits, replace_, span.live, counters);
     if (filtered < static_cast<std::uint64_t>(span.count))
       for (int i = 0; i < span.count; ++i)
         if (span.live[i]) general(i);

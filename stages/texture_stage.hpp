@@ -10,6 +10,7 @@
 #include "pipeline/counters.hpp"
 #include "pipeline/texture.hpp"
 #include "stages/fragment_span.hpp"
+#include "stages/texture_sample.hpp"
 
 namespace passim {
 
@@ -27,10 +28,9 @@ struct TextureStageSetup {
 class TextureStage final : public FragmentSink {
  public:
   explicit TextureStage(Counters*& counters) : counters_(counters) {}
-  void configure(const TextureStageSetup& setup, FragmentSink& next) {
-    setup_ = setup;
-    next_ = &next;
-  }
+  // Also works out, once per setup rather than per span, which path the spans take and what
+  // that path reads (the level's geometry, its replace codes).
+  void configure(const TextureStageSetup& setup, FragmentSink& next);
   void process(FragmentSpan& span) override;
   // Make the texel caches this setup's sampling reads (TextureLevel::values, codes_at), so
   // that several threads can then sample the texture without writing to it.
@@ -43,9 +43,15 @@ class TextureStage final : public FragmentSink {
   static void reset_fast_path_fragments_here();
 
  private:
+  enum class Path { kNearestReplace, kLinearReplace, kGeneral };
   FragmentSink* next_ = nullptr;
   Counters*& counters_;
   TextureStageSetup setup_;
+  Path path_ = Path::kGeneral;
+  LevelGeometry geometry_;                    // the base level's (fast paths)
+  const std::uint16_t* codes_ = nullptr;      // its replace codes (NEAREST)
+  std::array<bool, 4> replace_{};             // the components REPLACE takes (Table 3.18)
+  const double* fragment_values_[4] = {};     // code -> value at the fragment widths
 };
 
 }  // namespace passim
