@@ -352,6 +352,21 @@ __attribute__((target("avx2"))) inline void wrap_index_4(__m128i i0, GLenum mode
   hi = _mm_sub_epi32(i1, _mm_andnot_si128(_mm_cmplt_epi32(i1, n), n));
 }
 
+// The bits of a fragment's four 16-bit codes (as one 64-bit word) that REPLACE leaves alone.
+std::uint64_t kept_bits(const std::array<bool, 4>& replace) {
+  std::uint64_t keep = 0;
+  for (std::size_t k = 0; k < 4; ++k)
+    if (!replace[k]) keep |= std::uint64_t{0xffff} << (16 * k);
+  return keep;
+}
+// The fragment's codes `c` take `codes` where `keep` is clear.
+inline void merge_codes(std::uint16_t* c, std::uint64_t codes, std::uint64_t keep) {
+  std::uint64_t old = 0;
+  std::memcpy(&old, c, sizeof old);
+  const std::uint64_t now = (old & keep) | (codes & ~keep);
+  std::memcpy(c, &now, sizeof now);
+}
+
 // Four coordinates from a span, the lanes past its end (n < 4) at 0.
 __attribute__((target("avx2"))) inline __m256d load_4(const double* x, int n) {
   if (n == 4) return _mm256_loadu_pd(x);
@@ -383,9 +398,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), half = _mm256_set1_pd(0.5);
   const __m256d scale = _mm256_setr_pd(static_cast<double>(max_code(bits[0])), static_cast<double>(max_code(bits[1])),
                                        static_cast<double>(max_code(bits[2])), static_cast<double>(max_code(bits[3])));
-  std::uint64_t keep = 0;  // the bits of the four 16-bit codes that REPLACE leaves alone
-  for (int k = 0; k < 4; ++k)
-    if (!replace[static_cast<std::size_t>(k)]) keep |= std::uint64_t{0xffff} << (16 * k);
+  const std::uint64_t keep = kept_bits(replace);
   const bool two = l.dims == 2;
   const __m256d w_size = _mm256_set1_pd(static_cast<double>(l.w)), h_size = _mm256_set1_pd(static_cast<double>(l.h));
   const std::size_t row = static_cast<std::size_t>(l.width);
@@ -458,11 +471,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
       const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
       // Codes are at most 65535: PACKUSDW keeps them exactly.
       const __m128i codes = _mm_packus_epi32(_mm256_cvttpd_epi32(x), _mm_setzero_si128());
-      std::uint16_t* c = span.rgba + 4 * (i0 + k);
-      std::uint64_t old = 0, now = static_cast<std::uint64_t>(_mm_cvtsi128_si64(codes));
-      std::memcpy(&old, c, sizeof old);
-      now = (old & keep) | (now & ~keep);
-      std::memcpy(c, &now, sizeof now);
+      merge_codes(span.rgba + 4 * (i0 + k), static_cast<std::uint64_t>(_mm_cvtsi128_si64(codes)), keep);
     }
     filtered += static_cast<std::uint64_t>(__builtin_popcount(static_cast<unsigned>(lanes)));
   }
@@ -504,9 +513,7 @@ void nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* co
 __attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeometry& l, const std::uint16_t* codes,
                                                                const FragmentSpan& span,
                                                                const std::array<bool, 4>& replace) {
-  std::uint64_t keep = 0;  // the bits of the four 16-bit codes that REPLACE leaves alone
-  for (int k = 0; k < 4; ++k)
-    if (!replace[static_cast<std::size_t>(k)]) keep |= std::uint64_t{0xffff} << (16 * k);
+  const std::uint64_t keep = kept_bits(replace);
   const bool two = l.dims == 2;
   const __m256d zero = _mm256_setzero_pd();
   const __m256d w_size = _mm256_set1_pd(static_cast<double>(l.w)), h_size = _mm256_set1_pd(static_cast<double>(l.h));
@@ -535,12 +542,9 @@ __attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeomet
                                                           _mm256_cvtepi32_epi64(i)),
                                          2));
     for (int k = 0; k < n; ++k) {
-      std::uint64_t texel = 0, old = 0;
+      std::uint64_t texel = 0;
       std::memcpy(&texel, origin + offset[k], sizeof texel);
-      std::uint16_t* c = span.rgba + 4 * (i0 + k);
-      std::memcpy(&old, c, sizeof old);
-      const std::uint64_t now = (old & keep) | (texel & ~keep);
-      std::memcpy(c, &now, sizeof now);
+      merge_codes(span.rgba + 4 * (i0 + k), texel, keep);
     }
   }
 }
