@@ -292,8 +292,9 @@ void count_footprint(const LevelGeometry& l, Counters& counters) {
   counters.texture_bits_read += texels * static_cast<std::uint64_t>(l.bits_per_texel);
 }
 
-// The span loop both kernels share: each fragment's footprint, or general[i] = 1; `filter`
-// writes the codes of one fragment from its footprint.
+// The scalar reference's span loop (the AVX2 kernel does the same four fragments at a time):
+// each fragment's footprint, or general[i] = 1; `filter` writes the codes of one fragment
+// from its footprint.
 template <class Filter>
 [[gnu::always_inline]] inline std::uint64_t for_each_footprint(const LevelGeometry& l, const FragmentSpan& span,
                                                                std::uint8_t* general, Counters& counters,
