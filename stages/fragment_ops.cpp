@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "pipeline/fixed_point.hpp"
+#include "stages/avx2.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -179,7 +180,7 @@ namespace {
 
 // §4.1.6 Table 4.1-4.2: the factor for one component c (0-3) of a fragment.
 [[gnu::always_inline]] inline double blend_factor(GLenum f, int c, const double src[4], const double dst[4],
-                                                  const Vec4& constant) {
+                                                  const double constant[4]) {
   switch (f) {
     case GL_ZERO: return 0.0;
     case GL_ONE: return 1.0;
@@ -230,6 +231,156 @@ std::uint64_t depth_loop(Cmp cmp, bool write, const FragmentSpan& span, int begi
 }
 
 }  // namespace
+
+std::uint64_t blend_span_reals_scalar(const RealBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                                      std::uint16_t* dst, int begin, int end) {
+  // Code -> real tables for the widths (k/(2^n − 1); a 0-bit channel reads 1: absent alpha).
+  const double* src_values[4];
+  const double* dst_values[4];
+  for (int k = 0; k < 4; ++k) {
+    src_values[k] = b.src_bits[k] ? code_values(b.src_bits[k]) : nullptr;
+    dst_values[k] = b.dst_bits[k] ? code_values(b.dst_bits[k]) : nullptr;
+  }
+  std::uint64_t blended = 0;
+  for (int i = begin; i < end; ++i) {
+    if (!live[i]) continue;
+    ++blended;
+    std::uint16_t* d = dst + 4 * i;
+    const std::uint16_t* s = src + 4 * i;
+    double sv[4], dv[4];
+    for (int k = 0; k < 4; ++k) {
+      sv[k] = src_values[k] ? src_values[k][s[k]] : 1.0;
+      dv[k] = dst_values[k] ? dst_values[k][d[k]] : 1.0;
+    }
+    for (int k = 0; k < 4; ++k) {
+      if (!b.written[k]) continue;
+      const double sf = blend_factor(b.src_factor, k, sv, dv, b.constant);
+      const double df = blend_factor(b.dst_factor, k, sv, dv, b.constant);
+      const int product_bits = b.products_rounded ? b.dst_bits[k] : 0;
+      d[k] = static_cast<std::uint16_t>(
+          float_to_fixed(blend_one(b.equation, sv[k], dv[k], sf, df, product_bits), b.dst_bits[k]));
+    }
+  }
+  return blended;
+}
+
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+namespace {
+using V4 = __m256d;
+
+// (Helpers, not lambdas: a lambda does not take its enclosing function's target.)
+__attribute__((target("avx2"))) inline V4 alpha(V4 v) { return _mm256_permute4x64_pd(v, 0xff); }
+
+// blend_factor for the four components at once; lane k is blend_factor(f, k, ...).
+__attribute__((target("avx2"))) inline V4 blend_factor_4(GLenum f, V4 s, V4 d, V4 c, V4 one) {
+  switch (f) {
+    case GL_ZERO: return _mm256_setzero_pd();
+    case GL_ONE: return one;
+    case GL_SRC_COLOR: return s;
+    case GL_ONE_MINUS_SRC_COLOR: return _mm256_sub_pd(one, s);
+    case GL_DST_COLOR: return d;
+    case GL_ONE_MINUS_DST_COLOR: return _mm256_sub_pd(one, d);
+    case GL_SRC_ALPHA: return alpha(s);
+    case GL_ONE_MINUS_SRC_ALPHA: return _mm256_sub_pd(one, alpha(s));
+    case GL_DST_ALPHA: return alpha(d);
+    case GL_ONE_MINUS_DST_ALPHA: return _mm256_sub_pd(one, alpha(d));
+    case GL_CONSTANT_COLOR: return c;
+    case GL_ONE_MINUS_CONSTANT_COLOR: return _mm256_sub_pd(one, c);
+    case GL_CONSTANT_ALPHA: return alpha(c);
+    case GL_ONE_MINUS_CONSTANT_ALPHA: return _mm256_sub_pd(one, alpha(c));
+    case GL_SRC_ALPHA_SATURATE: {
+      // std::min(As, 1 − Ad) for RGB, 1 for A. Both operands are >= +0 and not NaN (codes
+      // over their maximum), where MINPD and std::min agree.
+      const V4 m = _mm256_min_pd(alpha(s), _mm256_sub_pd(one, alpha(d)));
+      return _mm256_blend_pd(m, one, 0x8);
+    }
+    default: return _mm256_setzero_pd();
+  }
+}
+
+// quantise(c, bits) lane by lane (float_to_fixed then back): clamp, ·m, +0.5, truncate, /m.
+__attribute__((target("avx2"))) inline V4 quantise_4(V4 c, V4 m) {
+  const V4 t = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(c, _mm256_setzero_pd(), _mm256_set1_pd(1.0)), m),
+                             _mm256_set1_pd(0.5));
+  return _mm256_div_pd(_mm256_round_pd(t, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC), m);
+}
+
+// Four codes as reals: k / m lane by lane, 1 where `none` has its sign bit set.
+__attribute__((target("avx2"))) inline V4 code_reals_4(const std::uint16_t* codes, V4 m, V4 none) {
+  const __m128i k32 = _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(codes)));
+  return _mm256_blendv_pd(_mm256_div_pd(_mm256_cvtepi32_pd(k32), m), _mm256_set1_pd(1.0), none);
+}
+
+__attribute__((target("avx2"))) inline V4 product_4(V4 x, V4 f, bool rounded, V4 m) {
+  const V4 p = _mm256_mul_pd(x, f);
+  return rounded ? quantise_4(p, m) : p;
+}
+
+template <GLenum Equation>
+__attribute__((target("avx2"))) std::uint64_t blend_reals_avx2(const RealBlend& b, const std::uint8_t* live,
+                                                               const std::uint16_t* src, std::uint16_t* dst, int begin,
+                                                               int end) {
+  // Per lane: the maxima (1 where a channel has no bits, whose value is then replaced by 1).
+  double src_max[4], dst_max[4], src_none[4], dst_none[4];
+  std::uint64_t written = 0;
+  for (int k = 0; k < 4; ++k) {
+    src_max[k] = b.src_bits[k] ? static_cast<double>(max_code(b.src_bits[k])) : 1.0;
+    dst_max[k] = b.dst_bits[k] ? static_cast<double>(max_code(b.dst_bits[k])) : 1.0;
+    src_none[k] = b.src_bits[k] ? 0.0 : -1.0;  // sign bit set: blendv takes 1
+    dst_none[k] = b.dst_bits[k] ? 0.0 : -1.0;
+    if (b.written[k]) written |= std::uint64_t{0xffff} << (16 * k);
+  }
+  const V4 one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5);
+  const V4 sm = _mm256_loadu_pd(src_max), dm = _mm256_loadu_pd(dst_max);
+  const V4 s_none = _mm256_loadu_pd(src_none), d_none = _mm256_loadu_pd(dst_none);
+  const V4 c = _mm256_loadu_pd(b.constant);
+  std::uint64_t blended = 0;
+  for (int i = begin; i < end; ++i) {
+    if (!live[i]) continue;
+    ++blended;
+    std::uint16_t* d = dst + 4 * i;
+    const V4 sv = code_reals_4(src + 4 * i, sm, s_none), dv = code_reals_4(d, dm, d_none);
+    V4 r;
+    if constexpr (Equation == GL_MIN) {
+      r = _mm256_min_pd(sv, dv);  // values >= +0, never NaN: MINPD is std::min
+    } else if constexpr (Equation == GL_MAX) {
+      r = _mm256_max_pd(sv, dv);
+    } else {
+      const V4 ps = product_4(sv, blend_factor_4(b.src_factor, sv, dv, c, one), b.products_rounded, dm);
+      const V4 pd = product_4(dv, blend_factor_4(b.dst_factor, sv, dv, c, one), b.products_rounded, dm);
+      if constexpr (Equation == GL_FUNC_SUBTRACT) r = _mm256_sub_pd(ps, pd);
+      else if constexpr (Equation == GL_FUNC_REVERSE_SUBTRACT) r = _mm256_sub_pd(pd, ps);
+      else r = _mm256_add_pd(ps, pd);
+    }
+    // float_to_fixed: clamp (NaN to 0), ·m + 0.5, truncated (the sum is >= 0.5 and < 2^16).
+    const V4 t = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), dm), half);
+    const __m128i codes32 = _mm256_cvttpd_epi32(t);
+    std::uint64_t out, old;
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(&out), _mm_packus_epi32(codes32, codes32));
+    std::memcpy(&old, d, sizeof old);
+    old = (old & ~written) | (out & written);
+    std::memcpy(d, &old, sizeof old);
+  }
+  return blended;
+}
+}  // namespace
+#endif
+
+std::uint64_t blend_span_reals(const RealBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                               std::uint16_t* dst, int begin, int end) {
+#if defined(PASSIM_HAVE_AVX2_KERNEL)
+  if (cpu_has_avx2()) {
+    switch (b.equation) {
+      case GL_FUNC_SUBTRACT: return blend_reals_avx2<GL_FUNC_SUBTRACT>(b, live, src, dst, begin, end);
+      case GL_FUNC_REVERSE_SUBTRACT: return blend_reals_avx2<GL_FUNC_REVERSE_SUBTRACT>(b, live, src, dst, begin, end);
+      case GL_MIN: return blend_reals_avx2<GL_MIN>(b, live, src, dst, begin, end);
+      case GL_MAX: return blend_reals_avx2<GL_MAX>(b, live, src, dst, begin, end);
+      default: return blend_reals_avx2<GL_FUNC_ADD>(b, live, src, dst, begin, end);
+    }
+  }
+#endif
+  return blend_span_reals_scalar(b, live, src, dst, begin, end);
+}
 
 std::uint64_t FragmentOps::depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
                                       std::uint32_t* stored, std::int64_t tested_hint, Counters& counters) {
@@ -303,9 +454,6 @@ std::uint64_t FragmentOps::stencil_and_depth(const FragmentOpsState& ops, const 
   }
   return killed;
 }
-
-namespace {
-}  // namespace
 
 namespace {
 
@@ -490,43 +638,35 @@ void FragmentOps::process(FragmentSpan& span) {
       counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
       continue;
     }
-    // Code -> real tables for this span's widths (k/(2^n − 1); a 0-bit channel reads 1).
-    static const double kOne = 1.0;
-    const double* src_values[4];
-    const double* dst_values[4];
-    for (int k = 0; k < 4; ++k) {
-      src_values[k] = fragment_bits[k] ? code_values(fragment_bits[k]) : nullptr;
-      dst_values[k] = cfg.color_bits[k] ? code_values(cfg.color_bits[k]) : nullptr;
+    if (blend_on) {
+      RealBlend b;
+      b.equation = ops.blend_equation;
+      b.src_factor = ops.blend_src;
+      b.dst_factor = ops.blend_dst;
+      b.products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
+      for (int k = 0; k < 4; ++k) {
+        b.constant[k] = ops.blend_color[k];
+        b.src_bits[k] = fragment_bits[k];
+        b.dst_bits[k] = cfg.color_bits[k];
+        b.written[k] = written[k];
+      }
+      const std::uint64_t blended = general_path_only ? blend_span_reals_scalar(b, live, span.rgba, dst, begin, end)
+                                                      : blend_span_reals(b, live, span.rgba, dst, begin, end);
+      counters.blend_operations += blended;
+      counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
+      continue;
     }
-    const bool products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
+    // Logic op (or a width change): the fragment's codes at the buffer's widths.
     for (int i = begin; i < end; ++i) {
       if (!live[i]) continue;
       std::uint16_t* d = dst + 4 * i;
       const std::uint16_t* s = span.rgba + 4 * i;
       std::uint32_t out[4];
-      if (blend_on) {
-        double src[4], dcol[4];
-        for (int k = 0; k < 4; ++k) {
-          src[k] = src_values[k] ? src_values[k][s[k]] : kOne;
-          dcol[k] = dst_values[k] ? dst_values[k][d[k]] : kOne;  // no alpha bits: Ad = 1
-        }
-        for (int k = 0; k < 4; ++k) {
-          if (!written[k]) continue;
-          const double sf = blend_factor(ops.blend_src, k, src, dcol, ops.blend_color);
-          const double df = blend_factor(ops.blend_dst, k, src, dcol, ops.blend_color);
-          const int product_bits = products_rounded ? cfg.color_bits[k] : 0;
-          out[k] = float_to_fixed(blend_one(ops.blend_equation, src[k], dcol[k], sf, df, product_bits),
-                                  cfg.color_bits[k]);
-        }
-        ++counters.blend_operations;
+      for (int k = 0; k < 4; ++k) out[k] = rescale_code(s[k], fragment_bits[k], cfg.color_bits[k]);
+      if (logic_on) {
+        for (int k = 0; k < 4; ++k) out[k] = logic_op(ops.logic_op, out[k], d[k], max_code(cfg.color_bits[k]));
+        ++counters.logic_operations;
         counters.color_bits_read += static_cast<std::uint64_t>(total_bits);
-      } else {
-        for (int k = 0; k < 4; ++k) out[k] = rescale_code(s[k], fragment_bits[k], cfg.color_bits[k]);
-        if (logic_on) {
-          for (int k = 0; k < 4; ++k) out[k] = logic_op(ops.logic_op, out[k], d[k], max_code(cfg.color_bits[k]));
-          ++counters.logic_operations;
-          counters.color_bits_read += static_cast<std::uint64_t>(total_bits);
-        }
       }
       for (int k = 0; k < 4; ++k)
         if (written[k]) d[k] = static_cast<std::uint16_t>(out[k]);

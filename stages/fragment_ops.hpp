@@ -77,6 +77,23 @@ std::uint64_t blend_span_unit_factors(const UnitFactorBlend& b, const std::uint8
                                       std::uint16_t* dst, int begin, int end);
 std::uint64_t blend_span_unit_factors_scalar(const UnitFactorBlend& b, const std::uint8_t* live,
                                              const std::uint16_t* src, std::uint16_t* dst, int begin, int end);
+// §4.1.6 blending in reals, any factors and widths, over fragments [begin, end) where
+// live[i] != 0: source codes `src` at src_bits (a channel of 0 bits reads 1), destination
+// codes `dst` at dst_bits, each written channel's result rounded to its destination code
+// (float_to_fixed); returns the fragments blended. The scalar loop is the definition; the
+// AVX2 kernel (one fragment's four components per instruction, the same IEEE operations in
+// the same order) gives the same codes (`Blend.RealFactorSpanKernelEqualsTheScalarLoop`).
+struct RealBlend {
+  GLenum equation = GL_FUNC_ADD, src_factor = GL_ONE, dst_factor = GL_ZERO;
+  double constant[4] = {0.0, 0.0, 0.0, 0.0};  // BLEND_COLOR
+  int src_bits[4] = {8, 8, 8, 8}, dst_bits[4] = {8, 8, 8, 8};
+  bool written[4] = {true, true, true, true};  // channels with bits that the colour mask opens
+  bool products_rounded = false;               // ArithmeticOptions::blend_products_rounded
+};
+std::uint64_t blend_span_reals(const RealBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                               std::uint16_t* dst, int begin, int end);
+std::uint64_t blend_span_reals_scalar(const RealBlend& b, const std::uint8_t* live, const std::uint16_t* src,
+                                      std::uint16_t* dst, int begin, int end);
 // §4.1.7 logic operation on n-bit codes.
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask);
 
