@@ -39,6 +39,7 @@ Context::~Context() = default;
 
 void Context::set_threads(int threads) {
   run_raster_queue();
+  primitive_setup_valid_ = false;  // connected to this thread's stages, or not
   threads = std::clamp(threads, 1, kMaxThreads);
   if (threads == this->threads()) return;
   scratch_->lanes.reset();
@@ -713,6 +714,7 @@ void Context::check_balance() const {
 }
 
 void Context::swap_buffers() {
+  primitive_setup_valid_ = false;
   if (!fb_.config.double_buffer) return;
   fb_.color[0].rgba = fb_.color[1].rgba;  // the back buffer's content is kept (GLX leaves it undefined)
 }

@@ -478,6 +478,11 @@ class Context {
   // The stage setup of a primitive drawn now (and its options' texture and fog parts);
   // prepare_fragment_stages connects this thread's stages to it, fragment_sink() their first.
   FragmentStagesSetup fragment_stages_setup(TriangleOptions& options);
+  // fragment_stages_setup for a point or polygon, worked out once for every primitive drawn
+  // until a call that may change state (any call a Begin/End or a draw call does not allow:
+  // PASSIM_ENTRY forgets it) and, on one thread, connected once. Sets the options' texture
+  // and fog parts as fragment_stages_setup does.
+  const FragmentStagesSetup& primitive_stages_setup(TriangleOptions& options);
   FragmentOpsInput fragment_ops_input() const;
   void prepare_fragment_stages(TriangleOptions& options);
   FragmentSink& fragment_sink();
@@ -592,6 +597,9 @@ class Context {
   int call_depth_ = 0;
   bool raster_queued_ = false;  // primitives wait in the raster lanes
   void run_raster_queue();
+  // primitive_stages_setup's memo (in Scratch) is valid until PASSIM_ENTRY of a
+  // state-changing call.
+  bool primitive_setup_valid_ = false;
 
   // passes
   std::vector<Pass> passes_;
@@ -666,7 +674,10 @@ bool Context::intercept(const CallInfo& info, const A&... args) {
     current_call_ = __func__;                                                                \
     if (intercept(passim_call_info_ __VA_OPT__(, ) __VA_ARGS__)) return ret;                 \
   }                                                                                          \
-  if (raster_queued_ && !passim_call_info_.keeps_raster_queue) run_raster_queue();             \
+  if (!passim_call_info_.keeps_raster_queue) {                                               \
+    if (raster_queued_) run_raster_queue();                                                  \
+    primitive_setup_valid_ = false;                                                          \
+  }                                                                                          \
   if (in_begin_ && !passim_call_info_.allowed_in_begin_end) {                                \
     set_error(GL_INVALID_OPERATION);                                                         \
     return ret;                                                                              \

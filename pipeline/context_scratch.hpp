@@ -17,6 +17,9 @@ struct Context::Scratch {
   FragmentStages stages;  // this thread's: [texture] -> [fog] -> per-fragment operations
   // With more than one thread of rasterization: the lanes primitives are queued to.
   std::unique_ptr<RasterLanes> lanes;
+  // Context::primitive_stages_setup's memo: the setup and the options' parts it sets.
+  FragmentStagesSetup primitive_setup;
+  TriangleOptions primitive_options;
   std::vector<ProcessedVertex> polygon, clip_scratch;
   std::vector<RasterVertex> window;
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of

@@ -796,11 +796,29 @@ FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   return setup;
 }
 
+const FragmentStagesSetup& Context::primitive_stages_setup(TriangleOptions& options) {
+  if (!primitive_setup_valid_) {
+    scratch_->primitive_options = TriangleOptions{};
+    scratch_->primitive_setup = fragment_stages_setup(scratch_->primitive_options);
+    if (!scratch_->lanes) scratch_->stages.connect(scratch_->primitive_setup);
+    primitive_setup_valid_ = true;
+  }
+  options.texcoords = scratch_->primitive_options.texcoords;
+  options.lod = scratch_->primitive_options.lod;
+  options.lod_width = scratch_->primitive_options.lod_width;
+  options.lod_height = scratch_->primitive_options.lod_height;
+  options.min_lod = scratch_->primitive_options.min_lod;
+  options.max_lod = scratch_->primitive_options.max_lod;
+  options.fog = scratch_->primitive_options.fog;
+  return scratch_->primitive_setup;
+}
+
 FragmentOpsInput Context::fragment_ops_input() const {
   return FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_, &profile_.arithmetic};
 }
 
 void Context::prepare_fragment_stages(TriangleOptions& options) {
+  primitive_setup_valid_ = false;  // the stages are connected to another setup now
   scratch_->stages.connect(fragment_stages_setup(options));
 }
 

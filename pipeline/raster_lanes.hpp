@@ -40,7 +40,7 @@ class RasterLanes {
   // The lanes are woken for every this many queued primitives.
   static constexpr std::size_t kChunk = 64;
   // Bands of each cycle a worker lane takes (the calling thread takes one).
-  static constexpr int kWorkerBands = 3;
+  static constexpr int kWorkerBands = 15;
   // A queue that ends shorter than a chunk runs on the calling thread alone (the same
   // result, without waking anyone). A queue this long is finished before more is added (bounds its memory).
   static constexpr std::size_t kMaxJobs = 4096;

@@ -111,3 +111,47 @@ TEST(VertexArrays, CompiledIntoListsWithTheirData) {
   // hypotenuse, excluded): 3 + 2 + 1 = 6.
   EXPECT_EQ(ctx.total_counters().fragments_generated, 6u);
 }
+
+TEST(DisplayLists, StateChangedBetweenPrimitivesReachesTheirFragments) {
+  // The stage setup of a primitive is worked out once for the primitives that follow until a
+  // call that may change state (Context::primitive_stages_setup): changes inside a list, between
+  // Begin/End blocks, must still reach the fragments. Texture A red, texture B blue (1x1,
+  // REPLACE), then no texture and green: three strips of 70 quads each (enough to be queued to
+  // the raster lanes on two threads), each strip its own colour.
+  for (int threads : {1, 2}) {
+    Context ctx(test::small_config(16, 4));
+    ctx.set_threads(threads);
+    test::window_projection(ctx);
+    GLuint tex[2];
+    ctx.glGenTextures(2, tex);
+    const GLubyte red[4] = {255, 0, 0, 255}, blue[4] = {0, 0, 255, 255};
+    for (int k = 0; k < 2; ++k) {
+      ctx.glBindTexture(GL_TEXTURE_2D, tex[k]);
+      ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, k == 0 ? red : blue);
+      ctx.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    }
+    ctx.glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    const GLuint list = ctx.glGenLists(1);
+    ctx.glNewList(list, GL_COMPILE);
+    ctx.glBindTexture(GL_TEXTURE_2D, tex[0]);
+    ctx.glEnable(GL_TEXTURE_2D);
+    for (int k = 0; k < 70; ++k) quad(ctx, 0, 0, 8, 4);
+    ctx.glBindTexture(GL_TEXTURE_2D, tex[1]);
+    for (int k = 0; k < 70; ++k) quad(ctx, 8, 0, 12, 4);
+    ctx.glDisable(GL_TEXTURE_2D);
+    ctx.glColor3f(0, 1, 0);
+    for (int k = 0; k < 70; ++k) quad(ctx, 12, 0, 16, 4);
+    ctx.glEndList();
+    ctx.glCallList(list);
+    for (int y = 0; y < 4; ++y) {
+      for (int x = 0; x < 16; ++x) {
+        const auto p = pixel(ctx, x, y);
+        const unsigned want_r = x < 8 ? 255u : 0u, want_g = x >= 12 ? 255u : 0u, want_b = x >= 8 && x < 12 ? 255u : 0u;
+        ASSERT_EQ(p[0], want_r) << threads << " threads, x " << x << " y " << y;
+        ASSERT_EQ(p[1], want_g) << threads << " threads, x " << x << " y " << y;
+        ASSERT_EQ(p[2], want_b) << threads << " threads, x " << x << " y " << y;
+      }
+    }
+    EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  }
+}
