@@ -402,11 +402,24 @@ class Context {
   void mult_matrix(const Mat4& m);
   void submit_vertex(const Vec4& object_position);
   ProcessedVertex process_vertex(const Vec4& object_position, Counters& counters);
+  // process_vertex in two parts: what it changes (the normal matrix computed, the vertex
+  // material recorded), once per run of vertices, and then, reading state only, a vertex with
+  // the given current normal.
+  void prepare_vertex_processing();
+  ProcessedVertex transform_vertex(const Vec4& object_position, const Vec3& normal, Counters& counters) const;
   double vertex_color(double c, int bits) const;
   void light_pending_vertex(ProcessedVertex& v, int face) const;
   void emit_primitive_vertex(const ProcessedVertex& v);
   void flush_polygon();
   void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);
+  // draw_polygon's work before rasterization (NaN checks, clipping, window coordinates, facing
+  // and culling, lighting the face drawn), reading state only: false when nothing is drawn.
+  struct PolygonWork;
+  bool assemble_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
+                        PolygonWork& work) const;
+  void note_polygon_warnings(unsigned warnings);
+  // A drawn polygon's triangle options: the stage setup's, shading and polygon offset.
+  TriangleOptions polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const;
   void draw_point(const ProcessedVertex& v);
   void array_element_impl(int i);
   void check_array_bounds(int max_index) const;

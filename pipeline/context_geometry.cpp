@@ -325,7 +325,22 @@ void Context::submit_vertex(const Vec4& object) {
   emit_primitive_vertex(process_vertex(object, c));
 }
 
+void Context::prepare_vertex_processing() {
+  const bool sphere_map = texturing_enabled_ && ((textures_.gen[0].enabled && textures_.gen[0].mode == GL_SPHERE_MAP) ||
+                                                  (textures_.gen[1].enabled && textures_.gen[1].mode == GL_SPHERE_MAP));
+  if (lighting_.enabled || sphere_map) normal_matrix();  // computed when the modelview changed
+  if (lighting_.enabled && (materials_dirty_ || vertex_materials_.empty())) {
+    vertex_materials_.push_back(lighting_.material);
+    materials_dirty_ = false;
+  }
+}
+
 ProcessedVertex Context::process_vertex(const Vec4& object, Counters& c) {
+  prepare_vertex_processing();
+  return transform_vertex(object, current_.normal, c);
+}
+
+ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal, Counters& c) const {
   // §2.10-2.13: transformation, lighting inputs or colour, texture coordinates. The result
   // is assembled at the end from locals, with no call in between, so that the compiler drops
   // the default initialisers' stores (a 128-byte memset per vertex, a third of this
@@ -340,10 +355,10 @@ ProcessedVertex Context::process_vertex(const Vec4& object, Counters& c) {
   Vec3 n(0.0);
   if (lighting_.enabled || sphere_map) {
     // §2.10.3: normals transform by the inverse transpose of the modelview's upper 3x3.
-    const Mat4& inv = normal_matrix();
-    n = Vec3(current_.normal.x * inv[0][0] + current_.normal.y * inv[0][1] + current_.normal.z * inv[0][2],
-             current_.normal.x * inv[1][0] + current_.normal.y * inv[1][1] + current_.normal.z * inv[1][2],
-             current_.normal.x * inv[2][0] + current_.normal.y * inv[2][1] + current_.normal.z * inv[2][2]);
+    const Mat4& inv = normal_matrix_;  // fresh: prepare_vertex_processing
+    n = Vec3(normal.x * inv[0][0] + normal.y * inv[0][1] + normal.z * inv[0][2],
+             normal.x * inv[1][0] + normal.y * inv[1][1] + normal.z * inv[1][2],
+             normal.x * inv[2][0] + normal.y * inv[2][1] + normal.z * inv[2][2]);
     if (transform_.normalize) {
       const double len = std::sqrt(glm::dot(n, n));
       if (len > 0.0) n /= len;
@@ -357,10 +372,6 @@ ProcessedVertex Context::process_vertex(const Vec4& object, Counters& c) {
     // counter says so. The simulator evaluates the equation only for the faces of polygons
     // that survive culling (light_pending), which gives the same bits.
     c.lighting_evaluations += lighting_.two_side ? 2 : 1;
-    if (materials_dirty_ || vertex_materials_.empty()) {
-      vertex_materials_.push_back(lighting_.material);
-      materials_dirty_ = false;
-    }
     material_index = static_cast<std::uint32_t>(vertex_materials_.size() - 1);
     light_pending = true;
   } else {
@@ -551,35 +562,36 @@ void Context::draw_point(const ProcessedVertex& v) {
   rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
 }
 
-void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
-  Counters& c = counters();
+bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
+                               PolygonWork& work) const {
+  Counters& c = work.counters;
   ++c.primitives_in;
-  std::vector<ProcessedVertex>& poly = scratch_->polygon;
+  std::vector<ProcessedVertex>& poly = work.polygon;
   poly.clear();
   for (int k = 0; k < count; ++k) {
     if (!finite_vertex(*vertices[k])) {
-      warn_once("a vertex with NaN or infinite coordinates was dropped (its primitive is counted as clipped out)");
+      work.warnings |= PolygonWork::kNonFiniteVertex;
       ++c.primitives_clipped_out;
-      return;
+      return false;
     }
     poly.push_back(*vertices[k]);
   }
   bool cut = false;
-  if (!clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut)) {
+  if (!clip_polygon(poly, work.clip_scratch, clip_planes_of(transform_), cut)) {
     ++c.primitives_clipped_out;
-    return;
+    return false;
   }
   if (cut) ++c.primitives_clipped;
 
   // Window coordinates, then facing from the signed area (§3.5.1, eq. 3.6).
-  std::vector<RasterVertex>& win = scratch_->window;
+  std::vector<RasterVertex>& win = work.window;
   win.resize(poly.size());
   for (std::size_t k = 0; k < poly.size(); ++k) {
     win[k] = to_window(poly[k], 0);
     if (!win[k].finite_position()) {
-      warn_once("a vertex with NaN or infinite window coordinates was dropped (its primitive is counted as clipped out)");
+      work.warnings |= PolygonWork::kNonFiniteWindow;
       ++c.primitives_clipped_out;
-      return;
+      return false;
     }
   }
   double area = 0.0;
@@ -592,7 +604,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   if (polygon_.cull_enabled &&
       (polygon_.cull_face == GL_FRONT_AND_BACK || (front ? polygon_.cull_face == GL_FRONT : polygon_.cull_face == GL_BACK))) {
     ++c.primitives_culled;
-    return;
+    return false;
   }
   const int face = (lighting_.enabled && lighting_.two_side && !front) ? 1 : 0;
   ProcessedVertex flat_source = provoking;
@@ -605,7 +617,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
         poly.push_back(*vertices[k]);
         light_pending_vertex(poly.back(), face);
       }
-      clip_polygon(poly, scratch_->clip_scratch, clip_planes_of(transform_), cut);
+      clip_polygon(poly, work.clip_scratch, clip_planes_of(transform_), cut);
     } else {
       for (ProcessedVertex& v : poly) light_pending_vertex(v, face);  // poly holds the vertices themselves
     }
@@ -614,28 +626,54 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   } else if (face == 1) {
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
   }
+  work.mode = front ? polygon_.mode_front : polygon_.mode_back;
+  work.flat_color = flat_source.color[static_cast<std::size_t>(face)];
+  return true;
+}
 
-  const GLenum mode = front ? polygon_.mode_front : polygon_.mode_back;
-  TriangleOptions options;
-  const FragmentStagesSetup& setup = primitive_stages_setup(options);
+void Context::note_polygon_warnings(unsigned warnings) {
+  if (warnings & PolygonWork::kNonFiniteVertex)
+    warn_once("a vertex with NaN or infinite coordinates was dropped (its primitive is counted as clipped out)");
+  if (warnings & PolygonWork::kNonFiniteWindow)
+    warn_once("a vertex with NaN or infinite window coordinates was dropped (its primitive is counted as clipped out)");
+}
+
+TriangleOptions Context::polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const {
+  TriangleOptions options = setup_options;
+  options.flat = lighting_.shade_model == GL_FLAT;
+  options.flat_color = flat_color;
+  options.offset = polygon_.offset_fill;
+  options.offset_factor = polygon_.offset_factor;
+  options.offset_units = polygon_.offset_units;
+  return options;
+}
+
+void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
+  Counters& c = counters();
+  PolygonWork& work = scratch_->polygon_work;
+  work.counters = Counters{};
+  work.warnings = 0;
+  const bool drawn = assemble_polygon(vertices, count, provoking, work);
+  c += work.counters;
+  note_polygon_warnings(work.warnings);
+  if (!drawn) return;
+  const std::vector<RasterVertex>& win = work.window;
+  TriangleOptions setup_options;
+  const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
   RasterLanes* lanes = scratch_->lanes.get();
   if (lanes) raster_queued_ = true;
-  if (mode == GL_POINT) {
+  if (work.mode == GL_POINT) {
     for (const RasterVertex& w : win) {
       if (lanes) lanes->point(w, polygon_.point_size, setup, c);
       else rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
     }
     return;
   }
-  if (mode == GL_LINE) {
+  if (work.mode == GL_LINE) {
     warn_once("glPolygonMode(GL_LINE) is not rasterized yet: such polygons produce no fragments");
     return;
   }
-  options.flat = lighting_.shade_model == GL_FLAT;
-  options.flat_color = flat_source.color[static_cast<std::size_t>(face)];
-  options.offset = polygon_.offset_fill;
-  options.offset_factor = polygon_.offset_factor;
-  options.offset_units = polygon_.offset_units;
+  const TriangleOptions options = polygon_options(setup_options, work.flat_color);
   // §3.5.1: a convex polygon may be decomposed; a fan from the first vertex.
   for (std::size_t k = 1; k + 1 < win.size(); ++k) {
     if (lanes) lanes->triangle(win[0], win[k], win[k + 1], options, setup, c);

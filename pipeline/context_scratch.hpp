@@ -9,6 +9,17 @@
 
 namespace passim {
 
+// What Context::assemble_polygon works in and produces: one per thread that assembles.
+struct Context::PolygonWork {
+  std::vector<ProcessedVertex> polygon, clip_scratch;
+  std::vector<RasterVertex> window;  // the polygon drawn, in window coordinates, lit
+  GLenum mode = GL_FILL;             // its polygon mode (by facing)
+  Vec4 flat_color{};                 // the provoking vertex's colour for the face drawn
+  Counters counters;                 // primitives in, clipped, clipped out, culled
+  enum Warning : unsigned { kNonFiniteVertex = 1, kNonFiniteWindow = 2 };
+  unsigned warnings = 0;
+};
+
 struct Context::Scratch {
   Scratch(Framebuffer& fb, int width)
       : spans(width), stages(fb, counters) {}
@@ -20,8 +31,7 @@ struct Context::Scratch {
   // Context::primitive_stages_setup's memo: the setup and the options' parts it sets.
   FragmentStagesSetup primitive_setup;
   TriangleOptions primitive_options;
-  std::vector<ProcessedVertex> polygon, clip_scratch;
-  std::vector<RasterVertex> window;
+  PolygonWork polygon_work;  // draw_polygon's
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of
   // the whole window does not map and fault in fresh pages each time.
   std::vector<Rgba> rectangle, rectangle_spare;
