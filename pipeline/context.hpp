@@ -413,10 +413,11 @@ class Context {
   void flush_polygon();
   void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);
   // draw_polygon's work before rasterization (NaN checks, clipping, window coordinates, facing
-  // and culling, lighting the face drawn), reading state only: false when nothing is drawn.
+  // and culling, lighting the face drawn), reading state only and counting primitives into
+  // `counters`: false when nothing is drawn.
   struct PolygonWork;
   bool assemble_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
-                        PolygonWork& work) const;
+                        PolygonWork& work, Counters& counters) const;
   void note_polygon_warnings(unsigned warnings);
   // A drawn polygon's triangle options: the stage setup's, shading and polygon offset.
   TriangleOptions polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const;
@@ -425,6 +426,19 @@ class Context {
   void check_array_bounds(int max_index) const;
   void compile_array_element(int i, std::vector<Call>& out) const;
   void execute_list(GLuint list);
+  // A glBegin(GL_TRIANGLES) ... glEnd block of a display list holding only glNormal3d and
+  // glVertex4d calls (what a compiled DrawArrays of vertex and normal arrays holds): with
+  // raster lanes, its vertices are transformed and its triangles assembled on every lane
+  // (draw_triangle_batch), then queued in order: the same primitives, bits and counters.
+  struct TriangleBatch {
+    std::size_t begin_call = 0, end_call = 0;  // indices of its glBegin and glEnd in the list
+    std::vector<Vec4> positions;
+    std::vector<Vec3> normals;   // each vertex's current normal (when the batch set one)
+    std::size_t inherited = 0;   // leading vertices that take the current normal at glBegin
+    bool sets_normal = false;    // and then the current normal after it is the last one set
+  };
+  void find_triangle_batches(GLuint list);
+  void draw_triangle_batch(const TriangleBatch& batch, const std::vector<Call>& calls);
   void set_light_param(GLenum light, GLenum pname, const double* v);
   void set_material_param(GLenum face, GLenum pname, const double* v);
   void set_light_model_param(GLenum pname, const double* v);
@@ -600,6 +614,7 @@ class Context {
   // display lists
   std::map<GLuint, std::vector<Call>> lists_;
   GLuint list_base_ = 0;
+  std::map<GLuint, std::vector<TriangleBatch>> list_batches_;  // of lists that have some
   GLuint compiling_list_ = 0;
   GLenum compile_mode_ = 0;
   std::vector<Call> compiling_calls_;

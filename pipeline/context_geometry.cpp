@@ -7,6 +7,8 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <atomic>
+
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
@@ -563,8 +565,7 @@ void Context::draw_point(const ProcessedVertex& v) {
 }
 
 bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
-                               PolygonWork& work) const {
-  Counters& c = work.counters;
+                               PolygonWork& work, Counters& c) const {
   ++c.primitives_in;
   std::vector<ProcessedVertex>& poly = work.polygon;
   poly.clear();
@@ -651,10 +652,8 @@ TriangleOptions Context::polygon_options(const TriangleOptions& setup_options, c
 void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
   Counters& c = counters();
   PolygonWork& work = scratch_->polygon_work;
-  work.counters = Counters{};
   work.warnings = 0;
-  const bool drawn = assemble_polygon(vertices, count, provoking, work);
-  c += work.counters;
+  const bool drawn = assemble_polygon(vertices, count, provoking, work, c);
   note_polygon_warnings(work.warnings);
   if (!drawn) return;
   const std::vector<RasterVertex>& win = work.window;
@@ -679,6 +678,82 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
     if (lanes) lanes->triangle(win[0], win[k], win[k + 1], options, setup, c);
     else rasterize_triangle(win[0], win[k], win[k + 1], options, setup.target, scratch_->spans, fragment_sink(), c);
   }
+}
+
+void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<Call>& calls) {
+  // Its glBegin has run. The batch is drawn as its calls would draw it, one by one, unless
+  // it began separate triangles with every polygon filled (points and lines are drawn by
+  // draw_polygon alone).
+  if (!scratch_->lanes || !in_begin_ || begin_mode_ != GL_TRIANGLES || !prim_vertices_.empty() ||
+      polygon_.mode_front != GL_FILL || polygon_.mode_back != GL_FILL) {
+    for (std::size_t k = batch.begin_call + 1; k < batch.end_call; ++k) calls[k].info->invoke(*this, calls[k].args);
+    return;
+  }
+  Counters& pass = counters();
+  RasterLanes& lanes = *scratch_->lanes;
+  prepare_vertex_processing();
+  const Vec3 start_normal = current_.normal;
+  const std::size_t count = batch.positions.size(), triangles = count / 3;
+  // Chunks of triangles go to whichever lane asks next (a worker still rasterizing what is
+  // queued joins when it is free, or not at all; the task touches nothing rasterization
+  // does: it reads state and writes its lane's counters and its chunks); each chunk is
+  // assembled the same way by any lane, and the chunks are queued in order.
+  constexpr std::size_t kChunkTriangles = 32;
+  const std::size_t chunks = (triangles + kChunkTriangles - 1) / kChunkTriangles;
+  std::vector<Scratch::BatchLane>& works = scratch_->batch_lanes;
+  std::vector<std::vector<Scratch::BatchTriangle>>& drawn = scratch_->batch_chunks;
+  works.resize(static_cast<std::size_t>(lanes.lanes()));
+  if (drawn.size() < chunks) drawn.resize(chunks);
+  for (Scratch::BatchLane& share : works) {  // a lane that takes no part adds nothing
+    share.counters = Counters{};
+    share.work.warnings = 0;
+  }
+  std::atomic<std::size_t> next_chunk{0};
+  lanes.run_task([&](int lane) {
+    Scratch::BatchLane& share = works[static_cast<std::size_t>(lane)];
+    PolygonWork& work = share.work;
+    Counters& counted = share.counters;
+    for (std::size_t chunk = next_chunk++; chunk < chunks; chunk = next_chunk++) {
+      std::vector<Scratch::BatchTriangle>& out = drawn[chunk];
+      out.clear();
+      const std::size_t last = std::min(triangles, (chunk + 1) * kChunkTriangles);
+      for (std::size_t t = chunk * kChunkTriangles; t < last; ++t) {
+        ProcessedVertex v[3];
+        for (std::size_t j = 0; j < 3; ++j) {
+          const std::size_t i = 3 * t + j;
+          ++counted.vertices;
+          v[j] = transform_vertex(batch.positions[i], i < batch.inherited ? start_normal : batch.normals[i], counted);
+        }
+        const ProcessedVertex* p[3] = {&v[0], &v[1], &v[2]};
+        if (!assemble_polygon(p, 3, v[2], work, counted)) continue;
+        const std::vector<RasterVertex>& win = work.window;
+        for (std::size_t k = 1; k + 1 < win.size(); ++k)
+          out.push_back(Scratch::BatchTriangle{{win[0], win[k], win[k + 1]}, work.flat_color});
+      }
+    }
+  });
+  // The lanes' counters (sums) and warnings, then the triangles to the raster queue in order.
+  for (const Scratch::BatchLane& share : works) {
+    pass += share.counters;
+    note_polygon_warnings(share.work.warnings);
+  }
+  bool any = false;
+  for (std::size_t chunk = 0; chunk < chunks; ++chunk) any = any || !drawn[chunk].empty();
+  if (any) {
+    TriangleOptions setup_options;
+    const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
+    raster_queued_ = true;
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+      for (const Scratch::BatchTriangle& t : drawn[chunk])
+        lanes.triangle(t.v[0], t.v[1], t.v[2], polygon_options(setup_options, t.flat_color), setup, pass);
+  }
+  prim_vertex_count_ += 3 * triangles;
+  // The vertices after the last whole triangle wait for the next, as their calls would leave them.
+  for (std::size_t i = 3 * triangles; i < count; ++i) {
+    current_.normal = i < batch.inherited ? start_normal : batch.normals[i];
+    submit_vertex(batch.positions[i]);
+  }
+  if (batch.sets_normal) current_.normal = batch.normals.back();
 }
 
 // ---------------------------------------------------------------- vertex arrays (§2.8)

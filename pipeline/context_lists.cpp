@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "pipeline/context.hpp"
+#include "pipeline/context_scratch.hpp"
 
 namespace passim {
 
@@ -23,8 +24,47 @@ void Context::glEndList() {
   if (compiling_list_ == 0) return set_error(GL_INVALID_OPERATION);
   lists_[compiling_list_] = std::move(compiling_calls_);
   compiling_calls_.clear();
+  find_triangle_batches(compiling_list_);
   compiling_list_ = 0;
   compile_mode_ = 0;
+}
+
+void Context::find_triangle_batches(GLuint list) {
+  static const CallInfo* const begin = find_call("glBegin");
+  static const CallInfo* const end = find_call("glEnd");
+  static const CallInfo* const vertex = find_call("glVertex4d");
+  static const CallInfo* const normal = find_call("glNormal3d");
+  // Smaller blocks are not worth waking the lanes for.
+  constexpr std::size_t kMinimumTriangles = 64;
+  std::vector<TriangleBatch> batches;
+  const std::vector<Call>& calls = lists_[list];
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    if (calls[i].info != begin || calls[i].args.size() != 1 || calls[i].args[0].i != GL_TRIANGLES) continue;
+    TriangleBatch b;
+    b.begin_call = i;
+    Vec3 current(0.0);
+    std::size_t j = i + 1;
+    for (; j < calls.size(); ++j) {
+      const Call& c = calls[j];
+      if (c.info == normal && c.args.size() == 3) {
+        current = Vec3(c.args[0].d, c.args[1].d, c.args[2].d);
+        b.sets_normal = true;
+      } else if (c.info == vertex && c.args.size() == 4) {
+        if (!b.sets_normal) ++b.inherited;
+        b.positions.push_back(Vec4(c.args[0].d, c.args[1].d, c.args[2].d, c.args[3].d));
+        b.normals.push_back(current);
+      } else {
+        break;
+      }
+    }
+    if (j < calls.size() && calls[j].info == end && b.positions.size() >= 3 * kMinimumTriangles) {
+      b.end_call = j;
+      batches.push_back(std::move(b));
+    }
+    i = j - 1;  // the call that ended the block is looked at again
+  }
+  if (batches.empty()) list_batches_.erase(list);
+  else list_batches_[list] = std::move(batches);
 }
 
 void Context::execute_list(GLuint list) {
@@ -35,7 +75,18 @@ void Context::execute_list(GLuint list) {
   ++list_nesting_;
   // Copy-free: a list cannot be redefined while it runs (NewList is not compiled).
   const std::vector<Call>& calls = it->second;
-  for (const Call& call : calls) call.info->invoke(*this, call.args);
+  const auto batches = scratch_->lanes ? list_batches_.find(list) : list_batches_.end();
+  if (batches == list_batches_.end()) {
+    for (const Call& call : calls) call.info->invoke(*this, call.args);
+  } else {
+    std::size_t next = 0;
+    for (const TriangleBatch& batch : batches->second) {
+      for (; next <= batch.begin_call; ++next) calls[next].info->invoke(*this, calls[next].args);  // up to its glBegin
+      draw_triangle_batch(batch, calls);
+      next = batch.end_call;
+    }
+    for (; next < calls.size(); ++next) calls[next].info->invoke(*this, calls[next].args);
+  }
   --list_nesting_;
 }
 
@@ -86,7 +137,10 @@ GLuint Context::glGenLists(GLsizei range) {
 void Context::glDeleteLists(GLuint list, GLsizei range) {
   PASSIM_ENTRY(list, range)
   if (range < 0) return set_error(GL_INVALID_VALUE);
-  for (GLsizei k = 0; k < range; ++k) lists_.erase(list + static_cast<GLuint>(k));
+  for (GLsizei k = 0; k < range; ++k) {
+    lists_.erase(list + static_cast<GLuint>(k));
+    list_batches_.erase(list + static_cast<GLuint>(k));
+  }
 }
 
 GLboolean Context::glIsList(GLuint list) {

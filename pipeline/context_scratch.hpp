@@ -15,7 +15,6 @@ struct Context::PolygonWork {
   std::vector<RasterVertex> window;  // the polygon drawn, in window coordinates, lit
   GLenum mode = GL_FILL;             // its polygon mode (by facing)
   Vec4 flat_color{};                 // the provoking vertex's colour for the face drawn
-  Counters counters;                 // primitives in, clipped, clipped out, culled
   enum Warning : unsigned { kNonFiniteVertex = 1, kNonFiniteWindow = 2 };
   unsigned warnings = 0;
 };
@@ -32,6 +31,18 @@ struct Context::Scratch {
   FragmentStagesSetup primitive_setup;
   TriangleOptions primitive_options;
   PolygonWork polygon_work;  // draw_polygon's
+  // draw_triangle_batch's: each lane's work (scratch, counters, warnings), and what each
+  // chunk of the batch's triangles draws, whichever lane assembled it.
+  struct BatchTriangle {
+    RasterVertex v[3];
+    Vec4 flat_color;
+  };
+  struct BatchLane {
+    PolygonWork work;
+    Counters counters;  // vertices, lighting and texgen evaluations, primitives in, clipped, culled
+  };
+  std::vector<BatchLane> batch_lanes;
+  std::vector<std::vector<BatchTriangle>> batch_chunks;
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of
   // the whole window does not map and fault in fresh pages each time.
   std::vector<Rgba> rectangle, rectangle_spare;

@@ -3,6 +3,7 @@
 namespace passim {
 
 std::atomic<std::uint64_t> RasterLanes::threaded_runs{0};
+std::atomic<std::uint64_t> RasterLanes::tasks_run{0};
 
 RasterLanes::RasterLanes(Framebuffer& fb, int lanes) : jobs_(std::make_unique<Job[]>(kMaxJobs)) {
   for (int k = 0; k < lanes; ++k) lanes_.push_back(std::make_unique<Lane>(fb, fb.config.width));
@@ -75,18 +76,50 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
   }
 }
 
+void RasterLanes::run_task(const std::function<void(int)>& task) {
+  tasks_run.fetch_add(1, std::memory_order_relaxed);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    task_ = &task;
+    ++task_serial_;
+  }
+  work_.notify_all();
+  std::exception_ptr error;
+  try {
+    task(0);
+  } catch (...) {
+    error = std::current_exception();
+  }
+  // Lanes that have not taken the task by now will not; wait for those that have.
+  std::unique_lock<std::mutex> lock(mutex_);
+  task_ = nullptr;
+  finished_.wait(lock, [&] { return tasks_active_ == 0; });
+  if (!error) error = task_error_;
+  task_error_ = nullptr;
+  if (error) std::rethrow_exception(error);
+}
+
 void RasterLanes::worker(int index) {
   Lane& lane = *lanes_[static_cast<std::size_t>(index)];
-  std::uint64_t batch = 0;
+  std::uint64_t batch = 0, task_serial = 0;
   std::size_t done = 0;
   bool reported = false;
   RasterTarget target;
   for (;;) {
     std::size_t upto = 0;
+    const std::function<void(int)>* task = nullptr;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       for (;;) {
         if (stop_) return;
+        if (task_serial_ != task_serial) {
+          task_serial = task_serial_;
+          task = task_;  // null when the calling thread has finished it meanwhile
+          if (task) {
+            ++tasks_active_;
+            break;
+          }
+        }
         if (batch_ != batch) {
           batch = batch_;
           done = 0;
@@ -96,6 +129,18 @@ void RasterLanes::worker(int index) {
         work_.wait(lock);
       }
       upto = published_;
+    }
+    if (task) {
+      std::exception_ptr error;
+      try {
+        (*task)(index);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (error && !task_error_) task_error_ = error;
+      if (--tasks_active_ == 0) finished_.notify_all();
+      continue;
     }
     if (upto > done) {
       if (done == 0) {  // a new queue: its setup was written before its first job was published
@@ -113,7 +158,7 @@ void RasterLanes::worker(int index) {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     reported = true;
-    if (++finished_lanes_ == static_cast<int>(workers_.size())) finished_.notify_one();
+    if (++finished_lanes_ == static_cast<int>(workers_.size())) finished_.notify_all();
   }
 }
 

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -36,6 +37,12 @@ class RasterLanes {
   void point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass);
   // Finish the queue; the lanes' counters are added to `pass`.
   void flush(Counters& pass);
+  // Run task(lane) on the calling thread (lane 0) and on every worker lane that is free to
+  // take it up before lane 0 has finished it: a worker does between two stretches of queued
+  // jobs, so the task must not touch what rasterization reads or writes, and must be able to
+  // do all its work on lane 0 alone (lanes claim parts of it). Returns when every lane that
+  // took it is done; an exception a lane throws is rethrown here.
+  void run_task(const std::function<void(int lane)>& task);
 
   // The lanes are woken for every this many queued primitives.
   static constexpr std::size_t kChunk = 64;
@@ -46,6 +53,8 @@ class RasterLanes {
   static constexpr std::size_t kMaxJobs = 4096;
   // Queues run on the lanes so far (for tests: the threads did run).
   static std::atomic<std::uint64_t> threaded_runs;
+  // Tasks run on the lanes so far (for tests).
+  static std::atomic<std::uint64_t> tasks_run;
 
  private:
   struct Job {
@@ -84,6 +93,12 @@ class RasterLanes {
   int finished_lanes_ = 0;  // worker lanes done with a closing queue
   bool stop_ = false;
   std::exception_ptr error_;
+  // run_task's, guarded by mutex_: the task (null once lane 0 is done with it), which one
+  // (a lane takes each at most once), lanes running it.
+  const std::function<void(int)>* task_ = nullptr;
+  std::uint64_t task_serial_ = 0;
+  int tasks_active_ = 0;
+  std::exception_ptr task_error_;
 };
 
 }  // namespace passim
