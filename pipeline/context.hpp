@@ -27,6 +27,8 @@
 namespace passim {
 
 struct FragmentStagesSetup;
+struct SpanBuffers;
+class FragmentSink;
 struct FragmentOpsInput;
 
 // Receives every call the application makes (outermost calls only), for recording.
@@ -542,6 +544,14 @@ class Context {
   RasterFragments prepare_rectangle_fragments();
   void draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width, int first_row,
                        int rows, const Rgba* rgba, const double* depth);
+  // draw_pixel_rows into the given stages, counters and span buffers (a lane's).
+  void draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width, int first_row,
+                       int rows, const Rgba* rgba, const double* depth, FragmentSink& sink, Counters& counters,
+                       SpanBuffers& spans) const;
+  // glCopyPixels's bands of rows (no convolution, histogram or minmax), converted,
+  // transferred and drawn on every raster lane: the same pixels and counters.
+  void copy_bands_on_lanes(const SourceCodes& source, const RectanglePlacement& placement, int width, int height,
+                           int band_rows);
   // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the
   // stencil writemask only.
   void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);

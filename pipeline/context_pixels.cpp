@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <atomic>
+
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
@@ -287,8 +289,12 @@ Context::RasterFragments Context::prepare_rectangle_fragments() {
 
 void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width,
                               int first_row, int rows, const Rgba* rgba, const double* depth) {
-  Counters& c = counters();
-  FragmentSink& sink = fragment_sink();
+  draw_pixel_rows(raster, placement, width, first_row, rows, rgba, depth, fragment_sink(), counters(), scratch_->spans);
+}
+
+void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width,
+                              int first_row, int rows, const Rgba* rgba, const double* depth, FragmentSink& sink,
+                              Counters& c, SpanBuffers& buf) const {
   const std::vector<int>& source_column = placement.source_column;
   const int count = static_cast<int>(source_column.size());
   if (count == 0) return;
@@ -297,7 +303,6 @@ void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlac
   for (int k = 0; k < 4; ++k) color_max[k] = static_cast<double>(max_code(fragment_bits_[k]));
   std::vector<std::uint16_t> row_codes(rgba ? 4 * static_cast<std::size_t>(width) : 0);
   std::vector<std::uint32_t> row_depth(rgba ? 0 : static_cast<std::size_t>(width));
-  SpanBuffers& buf = scratch_->spans;
   for (int j = first_row; j < first_row + rows; ++j) {
     const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
     if (row_lo > row_hi) continue;
@@ -327,6 +332,45 @@ void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlac
       sink.process(span);
     }
   }
+}
+
+void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlacement& placement, int width,
+                                  int height, int band_rows) {
+  // The bands are independent: each reads its own rows of the copied source and writes the
+  // window rows its source rows are placed on (distinct source rows never share a window
+  // row), through stages connected to the same setup; with no histogram or minmax to
+  // collect, the transfer reads its state only. The counters are sums.
+  TriangleOptions options;
+  const FragmentStagesSetup setup = fragment_stages_setup(options);
+  primitive_setup_valid_ = false;  // as prepare_fragment_stages would leave it
+  if (setup.texture) TextureStage::make_caches(setup.texture_setup);
+  const RasterFragments raster = raster_fragments(options);
+  RasterLanes& lanes = *scratch_->lanes;
+  std::vector<std::unique_ptr<Scratch::PixelLane>>& pixel_lanes = scratch_->pixel_lanes;
+  while (pixel_lanes.size() < static_cast<std::size_t>(lanes.lanes()))
+    pixel_lanes.push_back(std::make_unique<Scratch::PixelLane>(fb_, fb_.config.width));
+  for (auto& lane : pixel_lanes) {
+    lane->counters = Counters{};
+    lane->stages.connect(setup);
+  }
+  const Mat4& matrix = transform_.color.back();
+  const int bands = (height + band_rows - 1) / band_rows;
+  std::atomic<int> next_band{0};
+  lanes.run_task([&](int index) {
+    Scratch::PixelLane& lane = *pixel_lanes[static_cast<std::size_t>(index)];
+    for (int band = next_band++; band < bands; band = next_band++) {
+      const int j = band * band_rows;
+      int rows = std::min(band_rows, height - j);
+      int w = width;
+      lane.band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
+      source.to_reals(j, rows, lane.band.data());
+      transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters);
+      draw_pixel_rows(raster, placement, width, j, rows, lane.band.data(), nullptr, *lane.stages.first,
+                      lane.counters, lane.spans);
+    }
+  });
+  Counters& c = counters();
+  for (const auto& lane : pixel_lanes) c += lane->counters;
 }
 
 void Context::draw_stencil_rectangle(int width, int height, const std::vector<double>& indices) {
@@ -489,8 +533,12 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     // the source was read whole above).
     c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     const RectanglePlacement placement = place_rectangle(width, height);
-    const RasterFragments raster = prepare_rectangle_fragments();
     constexpr int kBandRows = 16;
+    if (scratch_->lanes && !transfer_.histogram.enabled && !transfer_.minmax.enabled && height > kBandRows) {
+      copy_bands_on_lanes(source, placement, width, height, kBandRows);
+      return;
+    }
+    const RasterFragments raster = prepare_rectangle_fragments();
     std::vector<Rgba> band(static_cast<std::size_t>(width) * static_cast<std::size_t>(std::min(height, kBandRows)));
     for (int j = 0; j < height; j += kBandRows) {
       int rows = std::min(kBandRows, height - j), w = width;

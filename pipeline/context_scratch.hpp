@@ -42,6 +42,16 @@ struct Context::Scratch {
     Counters counters;  // vertices, lighting and texgen evaluations, primitives in, clipped, culled
   };
   std::vector<BatchLane> batch_lanes;
+  // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals.
+  struct PixelLane {
+    PixelLane(Framebuffer& fb, int width) : spans(width), stages(fb, counting) {}
+    Counters counters;
+    Counters* counting = &counters;
+    SpanBuffers spans;
+    FragmentStages stages;
+    std::vector<Rgba> band;
+  };
+  std::vector<std::unique_ptr<PixelLane>> pixel_lanes;
   std::vector<std::vector<BatchTriangle>> batch_chunks;
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of
   // the whole window does not map and fault in fresh pages each time.

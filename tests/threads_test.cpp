@@ -171,6 +171,68 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
   EXPECT_GE(RasterLanes::tasks_run - tasks_before, 24u);  // the blocks did take the lanes' path
 }
 
+TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
+  // glCopyPixels's bands on the lanes (Context::copy_bands_on_lanes): random scenes copied
+  // through scale and bias, a colour table, the colour matrix, pixel zoom (up, down and
+  // mirrored), blending, colour masks and whatever texture, scissor and logic-op state the
+  // scene left, onto themselves and elsewhere.
+  const std::uint64_t tasks_before = RasterLanes::tasks_run;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    auto run = [&](int threads) {
+      auto ctx = std::make_unique<Context>(test::small_config(72, 56, 8 + static_cast<int>(seed % 5)));
+      ctx->set_threads(threads);
+      draw_random_scene(*ctx, seed);
+      while (ctx->glGetError() != GL_NO_ERROR) {
+      }  // the scene's own (not this test's)
+      std::mt19937 rng(seed * 7u);
+      std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+      if (seed % 2 == 0) ctx->glDisable(GL_TEXTURE_2D);  // otherwise rectangles are textured too
+      ctx->glDisable(GL_DEPTH_TEST);
+      ctx->glDisable(GL_STENCIL_TEST);
+      ctx->glDisable(GL_ALPHA_TEST);
+      ctx->glDisable(GL_FOG);
+      ctx->glMatrixMode(GL_PROJECTION);
+      ctx->glLoadIdentity();
+      ctx->glOrtho(0, 72, 0, 56, -1, 1);
+      ctx->glMatrixMode(GL_MODELVIEW);
+      ctx->glLoadIdentity();
+      ctx->glPixelTransferf(GL_RED_SCALE, 0.5f + unit(rng));
+      ctx->glPixelTransferf(GL_ALPHA_BIAS, unit(rng) - 0.5f);
+      std::vector<float> table(4 * 256);
+      for (float& v : table) v = unit(rng);
+      ctx->glColorTable(GL_COLOR_TABLE, GL_RGBA8, 256, GL_RGBA, GL_FLOAT, table.data());
+      if (seed % 2) ctx->glEnable(GL_COLOR_TABLE);
+      GLdouble matrix[16];
+      for (double& v : matrix) v = unit(rng) * 0.6;
+      ctx->glMatrixMode(GL_COLOR);
+      ctx->glLoadMatrixd(matrix);
+      ctx->glMatrixMode(GL_MODELVIEW);
+      const float zooms[] = {1.0f, 2.0f, 0.5f, -1.0f, 1.5f};
+      ctx->glPixelZoom(zooms[seed % 5], zooms[(seed / 2) % 5]);
+      if (seed % 3 == 0) {
+        ctx->glEnable(GL_BLEND);
+        ctx->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      }
+      ctx->glColorMask(GL_TRUE, seed % 4 != 0, GL_TRUE, GL_TRUE);
+      ctx->glRasterPos2i(static_cast<GLint>(rng() % 20), static_cast<GLint>(rng() % 20));
+      ctx->glCopyPixels(static_cast<GLint>(rng() % 10), static_cast<GLint>(rng() % 10), 60, 45, GL_COLOR);
+      ctx->glRasterPos2i(0, 0);
+      ctx->glCopyPixels(0, 0, 72, 56, GL_COLOR);
+      return ctx;
+    };
+    const auto one = run(1);
+    for (int threads : {2, 3}) {
+      const auto many = run(threads);
+      ASSERT_EQ(one->framebuffer().color[0].rgba, many->framebuffer().color[0].rgba) << seed << " " << threads;
+      ASSERT_TRUE(one->total_counters() == many->total_counters()) << seed << " " << threads;
+      EXPECT_EQ(many->glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << seed;
+    }
+    EXPECT_GT(one->total_counters().pixels_color_matrix, 0u) << seed;
+    EXPECT_GT(one->total_counters().fragments_written, 0u) << seed;
+  }
+  EXPECT_GE(RasterLanes::tasks_run - tasks_before, 32u);  // the copies did take the lanes' path
+}
+
 TEST(Threads, ProgramsGiveTheSameImagesAndCountersOnAnyNumberOfThreads) {
   struct Case {
     const char* program;
