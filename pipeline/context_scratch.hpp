@@ -43,12 +43,8 @@ struct Context::Scratch {
   };
   std::vector<BatchLane> batch_lanes;
   // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals.
-  struct PixelLane {
-    PixelLane(Framebuffer& fb, int width) : spans(width), stages(fb, counting) {}
-    Counters counters;
-    Counters* counting = &counters;
-    SpanBuffers spans;
-    FragmentStages stages;
+  struct PixelLane : LaneStages {
+    using LaneStages::LaneStages;
     std::vector<Rgba> band;
   };
   std::vector<std::unique_ptr<PixelLane>> pixel_lanes;

@@ -63,13 +63,7 @@ class RasterLanes {
     bool is_point = false;
     double point_size = 1.0;
   };
-  struct Lane {
-    Lane(Framebuffer& fb, int width) : spans(width), stages(fb, counting) {}
-    Counters counters;
-    Counters* counting = &counters;
-    SpanBuffers spans;
-    FragmentStages stages;
-  };
+  using Lane = LaneStages;
   void add(const Job& job, const FragmentStagesSetup& setup, Counters& pass);
   void publish();
   void run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const;

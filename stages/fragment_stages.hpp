@@ -5,6 +5,7 @@
 #include <array>
 
 #include "stages/fog.hpp"
+#include "stages/fragment_span.hpp"
 #include "stages/fragment_ops.hpp"
 #include "stages/rasterizer.hpp"
 #include "stages/texture_stage.hpp"
@@ -38,6 +39,18 @@ struct FragmentStages {
     if (s.texture) texture.configure(s.texture_setup, after_texture);
     first = s.texture ? static_cast<FragmentSink*>(&texture) : &after_texture;
   }
+};
+
+// A thread's own chain with what it works in: span buffers, and counters the chain counts
+// into (added to a pass's by the owner). Not movable: the chain holds `counting` by reference.
+struct LaneStages {
+  LaneStages(Framebuffer& fb, int width) : spans(width), stages(fb, counting) {}
+  LaneStages(const LaneStages&) = delete;
+  LaneStages& operator=(const LaneStages&) = delete;
+  Counters counters;
+  Counters* counting = &counters;
+  SpanBuffers spans;
+  FragmentStages stages;
 };
 
 }  // namespace passim
