@@ -186,8 +186,9 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   const double depth_scale = static_cast<double>(max_code(target.depth_bits));
   double color_scale[4];
   for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
-  for (std::int64_t row = row_lo; row <= row_hi; ++row) {
-    if (!target.owns_row(row)) continue;
+  RowOwnership ownership(target, row_lo);
+  for (std::int64_t row = row_lo; row <= row_hi; ++row, ownership.next_row()) {
+    if (!ownership.owned()) continue;
     const std::int64_t py = (2 * row + 1) * S;
     std::int64_t lo = col_lo, hi = col_hi;
     for (const Edge& e : edges) {

@@ -365,3 +365,34 @@ TEST(QuadDecomposition, ProfileChoosesTheDiagonal) {
   EXPECT_EQ(draw("mesa-llvmpipe", false), pairs);
   EXPECT_EQ(draw("mesa-llvmpipe", true), fan);
 }
+
+TEST(Raster, RowOwnershipWalksAsOwnsRowDecides) {
+  // The incremental walk against RasterTarget::owns_row's definition ((row / band_rows) %
+  // band_cycle in [band_first, band_first + band_count)), for every band layout the raster
+  // lanes make (1 to 7 lanes, 1 to 15 worker bands) and more, from starting rows across
+  // several cycles. A hand-checked case: bands of 8, cycle 4, this lane's bands 1-3: rows
+  // 0-7 are not its, 8-31 are, 32-39 not.
+  RasterTarget hand;
+  hand.band_rows = 8;
+  hand.band_cycle = 4;
+  hand.band_first = 1;
+  hand.band_count = 3;
+  RowOwnership walk(hand, 0);
+  for (int row = 0; row < 40; ++row, walk.next_row())
+    EXPECT_EQ(walk.owned(), row >= 8 && row < 32) << row;
+  for (int rows = 1; rows <= 9; ++rows)
+    for (int cycle = 1; cycle <= 16; ++cycle)
+      for (int first = 0; first < cycle; ++first)
+        for (int count = 1; first + count <= cycle; ++count) {
+          RasterTarget t;
+          t.band_rows = rows;
+          t.band_cycle = cycle;
+          t.band_first = first;
+          t.band_count = count;
+          for (std::int64_t start : {0, 1, 7, 8, 37, 500, 1023}) {
+            RowOwnership w(t, start);
+            for (std::int64_t row = start; row < start + 3 * rows * cycle + 5; ++row, w.next_row())
+              ASSERT_EQ(w.owned(), t.owns_row(row)) << rows << " " << cycle << " " << first << " " << count << " row " << row;
+          }
+        }
+}
