@@ -706,7 +706,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   if (drawn.size() < chunks) drawn.resize(chunks);
   for (Scratch::BatchLane& share : works) {  // a lane that takes no part adds nothing
     share.counters = Counters{};
-    share.work.warnings = 0;
+    share.first_warned[0] = share.first_warned[1] = SIZE_MAX;
   }
   std::atomic<std::size_t> next_chunk{0};
   lanes.run_task([&](int lane) {
@@ -725,27 +725,42 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
           v[j] = transform_vertex(batch.positions[i], i < batch.inherited ? start_normal : batch.normals[i], counted);
         }
         const ProcessedVertex* p[3] = {&v[0], &v[1], &v[2]};
-        if (!assemble_polygon(p, 3, v[2], work, counted)) continue;
+        work.warnings = 0;
+        const bool drawn_here = assemble_polygon(p, 3, v[2], work, counted);
+        for (unsigned kind = 0; kind < 2; ++kind)
+          if (work.warnings & (1u << kind)) share.first_warned[kind] = std::min(share.first_warned[kind], t);
+        if (!drawn_here) continue;
         const std::vector<RasterVertex>& win = work.window;
         for (std::size_t k = 1; k + 1 < win.size(); ++k)
-          out.push_back(Scratch::BatchTriangle{{win[0], win[k], win[k + 1]}, work.flat_color});
+          out.push_back(Scratch::BatchTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
       }
     }
   });
-  // The lanes' counters (sums) and warnings, then the triangles to the raster queue in order.
+  // The lanes' counters (sums); the warnings and the stage setup (which may warn too, and is
+  // made at the first triangle drawn) in the order the calls one by one would meet them;
+  // then the triangles to the raster queue in order.
+  std::size_t first_warned[2] = {SIZE_MAX, SIZE_MAX}, first_drawn = SIZE_MAX;
   for (const Scratch::BatchLane& share : works) {
     pass += share.counters;
-    note_polygon_warnings(share.work.warnings);
+    for (int kind = 0; kind < 2; ++kind) first_warned[kind] = std::min(first_warned[kind], share.first_warned[kind]);
   }
-  bool any = false;
-  for (std::size_t chunk = 0; chunk < chunks; ++chunk) any = any || !drawn[chunk].empty();
-  if (any) {
-    TriangleOptions setup_options;
-    const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
+  for (std::size_t chunk = 0; chunk < chunks && first_drawn == SIZE_MAX; ++chunk)
+    if (!drawn[chunk].empty()) first_drawn = drawn[chunk].front().source;
+  std::array<std::pair<std::size_t, int>, 3> events{
+      {{first_warned[0], 0}, {first_warned[1], 1}, {first_drawn, 2}}};
+  std::sort(events.begin(), events.end());
+  TriangleOptions setup_options;
+  const FragmentStagesSetup* setup = nullptr;
+  for (const auto& [at, what] : events) {
+    if (at == SIZE_MAX) break;
+    if (what == 2) setup = &primitive_stages_setup(setup_options);
+    else note_polygon_warnings(what == 0 ? PolygonWork::kNonFiniteVertex : PolygonWork::kNonFiniteWindow);
+  }
+  if (setup) {
     raster_queued_ = true;
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
       for (const Scratch::BatchTriangle& t : drawn[chunk])
-        lanes.triangle(t.v[0], t.v[1], t.v[2], polygon_options(setup_options, t.flat_color), setup, pass);
+        lanes.triangle(t.v[0], t.v[1], t.v[2], polygon_options(setup_options, t.flat_color), *setup, pass);
   }
   prim_vertex_count_ += 3 * triangles;
   // The vertices after the last whole triangle wait for the next, as their calls would leave them.

@@ -36,10 +36,14 @@ struct Context::Scratch {
   struct BatchTriangle {
     RasterVertex v[3];
     Vec4 flat_color;
+    std::size_t source;  // the block's triangle it comes from
   };
   struct BatchLane {
     PolygonWork work;
     Counters counters;  // vertices, lighting and texgen evaluations, primitives in, clipped, culled
+    // The first of its triangles that raised each PolygonWork warning (kNonFiniteVertex,
+    // kNonFiniteWindow), SIZE_MAX for none.
+    std::size_t first_warned[2] = {SIZE_MAX, SIZE_MAX};
   };
   std::vector<BatchLane> batch_lanes;
   // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals.
