@@ -327,9 +327,14 @@ void Context::submit_vertex(const Vec4& object) {
   emit_primitive_vertex(process_vertex(object, c));
 }
 
+bool Context::sphere_map_texgen() const {
+  // §2.10.4: SPHERE_MAP generates s or t from the eye-space normal.
+  return texturing_enabled_ && ((textures_.gen[0].enabled && textures_.gen[0].mode == GL_SPHERE_MAP) ||
+                                (textures_.gen[1].enabled && textures_.gen[1].mode == GL_SPHERE_MAP));
+}
+
 void Context::prepare_vertex_processing() {
-  const bool sphere_map = texturing_enabled_ && ((textures_.gen[0].enabled && textures_.gen[0].mode == GL_SPHERE_MAP) ||
-                                                  (textures_.gen[1].enabled && textures_.gen[1].mode == GL_SPHERE_MAP));
+  const bool sphere_map = sphere_map_texgen();
   if (lighting_.enabled || sphere_map) normal_matrix();  // computed when the modelview changed
   if (lighting_.enabled && (materials_dirty_ || vertex_materials_.empty())) {
     vertex_materials_.push_back(lighting_.material);
@@ -352,8 +357,7 @@ ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal
   std::array<Vec4, 2> color{Vec4(0.0), Vec4(0.0)};
   std::uint32_t material_index = 0;
   bool light_pending = false;
-  const bool sphere_map = texturing_enabled_ && ((textures_.gen[0].enabled && textures_.gen[0].mode == GL_SPHERE_MAP) ||
-                                                  (textures_.gen[1].enabled && textures_.gen[1].mode == GL_SPHERE_MAP));
+  const bool sphere_map = sphere_map_texgen();
   Vec3 n(0.0);
   if (lighting_.enabled || sphere_map) {
     // §2.10.3: normals transform by the inverse transpose of the modelview's upper 3x3.
