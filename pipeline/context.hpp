@@ -510,8 +510,8 @@ class Context {
   FragmentStagesSetup fragment_stages_setup(TriangleOptions& options);
   // fragment_stages_setup for a point or polygon, worked out once for every primitive drawn
   // until a call that may change state (any call a Begin/End or a draw call does not allow:
-  // PASSIM_ENTRY forgets it) and, on one thread, connected once. Sets the options' texture
-  // and fog parts as fragment_stages_setup does.
+  // PASSIM_ENTRY forgets it) and, on one thread, connected once. `options` becomes the
+  // default options with the texture and fog parts fragment_stages_setup sets.
   const FragmentStagesSetup& primitive_stages_setup(TriangleOptions& options);
   FragmentOpsInput fragment_ops_input() const;
   void prepare_fragment_stages(TriangleOptions& options);

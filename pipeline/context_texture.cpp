@@ -803,13 +803,7 @@ const FragmentStagesSetup& Context::primitive_stages_setup(TriangleOptions& opti
     if (!scratch_->lanes) scratch_->stages.connect(scratch_->primitive_setup);
     primitive_setup_valid_ = true;
   }
-  options.texcoords = scratch_->primitive_options.texcoords;
-  options.lod = scratch_->primitive_options.lod;
-  options.lod_width = scratch_->primitive_options.lod_width;
-  options.lod_height = scratch_->primitive_options.lod_height;
-  options.min_lod = scratch_->primitive_options.min_lod;
-  options.max_lod = scratch_->primitive_options.max_lod;
-  options.fog = scratch_->primitive_options.fog;
+  options = scratch_->primitive_options;
   return scratch_->primitive_setup;
 }
 
