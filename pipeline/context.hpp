@@ -27,6 +27,7 @@
 namespace passim {
 
 struct FragmentStagesSetup;
+struct LaneStages;
 struct SpanBuffers;
 class FragmentSink;
 struct FragmentOpsInput;
@@ -469,6 +470,14 @@ class Context {
                       GLenum type, const void* data);
   void store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
                     const std::vector<double>* depth);
+  // Copies to a colour texture read through the transfer operations: whole, or in bands of
+  // rows on every raster lane when the transfer has nothing that needs neighbouring or
+  // earlier rows (no convolution, histogram or minmax) — the same texels and counters.
+  // The source is width × height at (x, y); the texels stored are store_width × store_height
+  // at (x0, y0) (smaller after a REDUCE convolution). Nothing is stored when the transfer
+  // consumed the image (a histogram or minmax sink).
+  void copy_color_texels(int dims, int x, int y, int width, int height, TextureLevel& level, int x0, int y0,
+                         int store_width, int store_height);
   TextureLevel* sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
                                 GLsizei height);
   void read_for_texture(bool depth, int dims, int x, int y, int width, int height, std::vector<Rgba>& rgba,
@@ -553,6 +562,13 @@ class Context {
   // transferred and drawn on every raster lane: the same pixels and counters.
   void copy_bands_on_lanes(const SourceCodes& source, const RectanglePlacement& placement, int width, int height,
                            int band_rows);
+  // The bands of `source` (band_rows rows each) converted and transferred on every raster
+  // lane, each band handed to use(lane, reals, first row, rows) on the lane that made it; the
+  // lanes' stages connected to `setup` first when given; their counters added to the pass.
+  // For transfers without a convolution, histogram or minmax (per pixel, no order).
+  using TransferredBandUse = std::function<void(LaneStages& lane, const Rgba* band, int first_row, int rows)>;
+  void transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
+                               const FragmentStagesSetup* setup, const TransferredBandUse& use);
   // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the
   // stencil writemask only.
   void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);

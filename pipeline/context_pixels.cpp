@@ -345,13 +345,22 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
   primitive_setup_valid_ = false;  // as prepare_fragment_stages would leave it
   if (setup.texture) TextureStage::make_caches(setup.texture_setup);
   const RasterFragments raster = raster_fragments(options);
+  transfer_bands_on_lanes(source, width, height, 2, band_rows, &setup,
+                          [&](LaneStages& lane, const Rgba* band, int first_row, int rows) {
+                            draw_pixel_rows(raster, placement, width, first_row, rows, band, nullptr,
+                                            *lane.stages.first, lane.counters, lane.spans);
+                          });
+}
+
+void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
+                                      const FragmentStagesSetup* setup, const TransferredBandUse& use) {
   RasterLanes& lanes = *scratch_->lanes;
   std::vector<std::unique_ptr<Scratch::PixelLane>>& pixel_lanes = scratch_->pixel_lanes;
   while (pixel_lanes.size() < static_cast<std::size_t>(lanes.lanes()))
     pixel_lanes.push_back(std::make_unique<Scratch::PixelLane>(fb_, fb_.config.width));
   for (auto& lane : pixel_lanes) {
     lane->counters = Counters{};
-    lane->stages.connect(setup);
+    if (setup) lane->stages.connect(*setup);
   }
   const Mat4& matrix = transform_.color.back();
   const int bands = (height + band_rows - 1) / band_rows;
@@ -360,13 +369,11 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
     Scratch::PixelLane& lane = *pixel_lanes[static_cast<std::size_t>(index)];
     for (int band = next_band++; band < bands; band = next_band++) {
       const int j = band * band_rows;
-      int rows = std::min(band_rows, height - j);
-      int w = width;
+      int rows = std::min(band_rows, height - j), w = width;
       lane.band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
       source.to_reals(j, rows, lane.band.data());
-      transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters);
-      draw_pixel_rows(raster, placement, width, j, rows, lane.band.data(), nullptr, *lane.stages.first,
-                      lane.counters, lane.spans);
+      transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters, dims);
+      use(lane, lane.band.data(), j, rows);
     }
   });
   Counters& c = counters();

@@ -146,23 +146,58 @@ int texel_bits(const InternalFormat& f) {
 
 }  // namespace
 
-void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
-                           const std::vector<double>* depth) {
-  level.texels_changed();
+namespace {
+// Rows [y0, y0 + height) of `level` from x0 on, from width × height values (colour or depth).
+// The caller has marked the level's texels changed.
+void write_texels(TextureLevel& level, int x0, int y0, int width, int height, const Rgba* rgba, const double* depth,
+                  Counters& counters) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t src = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
       std::uint32_t* dst = &level.texels[4 * (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(level.width) +
                                               static_cast<std::size_t>(x0 + x))];
       if (depth) {
-        dst[0] = float_to_fixed((*depth)[src], level.format.depth);
+        dst[0] = float_to_fixed(depth[src], level.format.depth);
         dst[1] = dst[2] = dst[3] = 0;
       } else {
         texel_codes(level.format, rgba[src], dst);
       }
     }
-  counters().texture_bits_written += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
-                                     static_cast<std::uint64_t>(texel_bits(level.format));
+  counters.texture_bits_written += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                                   static_cast<std::uint64_t>(texel_bits(level.format));
+}
+}  // namespace
+
+void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
+                           const std::vector<double>* depth) {
+  level.texels_changed();
+  write_texels(level, x0, y0, width, height, rgba.data(), depth ? depth->data() : nullptr, counters());
+}
+
+void Context::copy_color_texels(int dims, int x, int y, int width, int height, TextureLevel& level, int x0, int y0,
+                                int store_width, int store_height) {
+  constexpr int kBandRows = 16;
+  if (!scratch_->lanes || active_convolution(transfer_, dims) || transfer_.histogram.enabled ||
+      transfer_.minmax.enabled || height <= kBandRows) {
+    std::vector<Rgba> rgba;
+    std::vector<double> unused;
+    read_for_texture(false, dims, x, y, width, height, rgba, unused);
+    if (!rgba.empty()) store_texels(level, x0, y0, store_width, store_height, rgba, nullptr);
+    return;
+  }
+  // Every step is per pixel: each lane converts, transfers and stores whole bands of rows
+  // (read_for_texture's counting, then the transfer's and the stores' per lane: sums).
+  Counters& c = counters();
+  const FramebufferConfig& f = fb_.config;
+  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  c.pixels_read += n;
+  c.color_bits_read += n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
+  const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
+  level.texels_changed();
+  transfer_bands_on_lanes(source, width, height, dims, kBandRows, nullptr,
+                          [&](LaneStages& lane, const Rgba* band, int first_row, int rows) {
+                            write_texels(level, x0, y0 + first_row, width, rows, band, nullptr, lane.counters);
+                          });
 }
 
 void Context::tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
@@ -450,13 +485,13 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
             f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
   if (error_log_.size() != errors) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
-  std::vector<Rgba> rgba;
-  std::vector<double> depth;
-  const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
-  read_for_texture(is_depth, dims, x, y, width, dims == 2 ? height : 1, rgba, depth);
-  if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
-  store_texels(l, 0, 0, l.width, l.height, rgba, is_depth ? &depth : nullptr);
+  if (l.format.base != GL_DEPTH_COMPONENT)
+    return copy_color_texels(dims, x, y, width, dims == 2 ? height : 1, l, 0, 0, l.width, l.height);
+  std::vector<Rgba> unused;
+  std::vector<double> depth;
+  read_for_texture(true, dims, x, y, width, dims == 2 ? height : 1, unused, depth);
+  store_texels(l, 0, 0, l.width, l.height, unused, &depth);
 }
 
 void Context::glCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,
@@ -484,12 +519,13 @@ void Context::copy_tex_sub_image(GLenum target, int dims, GLint level, GLint xof
   TextureLevel& l = *level_ptr;
   const int b = l.border;
   if (width <= 0 || height <= 0) return;
-  std::vector<Rgba> rgba;
+  const int x0 = xoffset + b, y0 = dims == 2 ? yoffset + b : 0;
+  if (l.format.base != GL_DEPTH_COMPONENT)
+    return copy_color_texels(dims, x, y, source_width, source_height, l, x0, y0, width, height);
+  std::vector<Rgba> unused;
   std::vector<double> depth;
-  const bool is_depth = l.format.base == GL_DEPTH_COMPONENT;
-  read_for_texture(is_depth, dims, x, y, source_width, source_height, rgba, depth);
-  if (!is_depth && rgba.empty()) return;  // consumed by a histogram or minmax sink
-  store_texels(l, xoffset + b, dims == 2 ? yoffset + b : 0, width, height, rgba, is_depth ? &depth : nullptr);
+  read_for_texture(true, dims, x, y, source_width, source_height, unused, depth);
+  store_texels(l, x0, y0, width, height, unused, &depth);
 }
 
 void Context::glCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei width) {

@@ -5,24 +5,86 @@ namespace passim {
 std::atomic<std::uint64_t> RasterLanes::threaded_runs{0};
 std::atomic<std::uint64_t> RasterLanes::tasks_run{0};
 
-RasterLanes::RasterLanes(Framebuffer& fb, int lanes) : jobs_(std::make_unique<Job[]>(kMaxJobs)) {
+RasterLanes::RasterLanes(Framebuffer& fb, int lanes)
+    : jobs_(std::make_unique<Job[]>(kMaxJobs)), lane_batch_(static_cast<std::size_t>(lanes), 0),
+      groups_(static_cast<std::size_t>(kGroupsPerLane * lanes)) {
   for (int k = 0; k < lanes; ++k) lanes_.push_back(std::make_unique<Lane>(fb, fb.config.width));
   for (int k = 1; k < lanes; ++k) workers_.emplace_back([this, k] { worker(k); });
 }
 
-RasterTarget RasterLanes::lane_target(int index) const {
+void RasterLanes::notify(std::condition_variable& cv) {
+  announcements_.fetch_add(1, std::memory_order_release);
+  cv.notify_all();
+}
+
+template <class Ready>
+void RasterLanes::wait(std::unique_lock<std::mutex>& lock, std::condition_variable& cv, Ready ready) {
+  if (ready()) return;
+  const std::uint64_t seen = announcements_.load(std::memory_order_acquire);
+  lock.unlock();
+  const auto until = std::chrono::steady_clock::now() + kSpin;
+  for (int k = 1;; ++k) {
+    if (announcements_.load(std::memory_order_acquire) != seen) break;
+    if (k % 64 == 0 && std::chrono::steady_clock::now() > until) break;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  lock.lock();
+  cv.wait(lock, ready);
+}
+
+RasterTarget RasterLanes::group_target(int group) const {
   RasterTarget t = setup_.target;
-  t.band_cycle = 1 + kWorkerBands * (lanes() - 1);
-  t.band_first = index == 0 ? 0 : 1 + kWorkerBands * (index - 1);
-  t.band_count = index == 0 ? 1 : kWorkerBands;
+  t.band_rows = kStripeRows;
+  t.band_cycle = static_cast<int>(groups_.size());
+  t.band_first = group;  // group 0 counts the per-primitive counters
+  t.band_count = 1;
   return t;
 }
 
-void RasterLanes::run_own_rows() {
-  Lane& lane = *lanes_[0];
-  if (own_done_ == 0) lane.stages.connect(setup_);
-  run_jobs(lane, lane_target(0), own_done_, queued_);
-  own_done_ = queued_;
+int RasterLanes::claimable(int from, std::size_t backlog) const {
+  const int n = static_cast<int>(groups_.size());
+  for (int k = 0; k < n; ++k) {
+    const int g = (from + k) % n;
+    const Group& group = groups_[static_cast<std::size_t>(g)];
+    if (!group.busy && group.done + backlog <= published_) return g;
+  }
+  return -1;
+}
+
+bool RasterLanes::all_run() const {
+  for (const Group& group : groups_)
+    if (group.busy || group.done < published_) return false;
+  return true;
+}
+
+void RasterLanes::run_groups(int index, std::unique_lock<std::mutex>& lock, std::size_t backlog) {
+  Lane& lane = *lanes_[static_cast<std::size_t>(index)];
+  // Lanes start their search at different groups, so that they rarely meet on one.
+  const int from = index * kGroupsPerLane;
+  for (int g = claimable(from, backlog); g >= 0; g = claimable(from, backlog)) {
+    Group& group = groups_[static_cast<std::size_t>(g)];
+    group.busy = true;
+    const std::size_t first = group.done, last = published_;
+    const bool connect = lane_batch_[static_cast<std::size_t>(index)] != batch_;
+    lane_batch_[static_cast<std::size_t>(index)] = batch_;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      // A new queue: its setup was written before its first job was published.
+      if (connect) lane.stages.connect(setup_);
+      run_jobs(lane, group_target(g), first, last);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error && !error_) error_ = error;
+    group.done = last;
+    group.busy = false;
+    if (group.done < published_) notify(work_);  // more came meanwhile: for a sleeping lane
+    if (all_run()) notify(finished_);
+  }
 }
 
 RasterLanes::~RasterLanes() {
@@ -30,7 +92,7 @@ RasterLanes::~RasterLanes() {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
   }
-  work_.notify_all();
+  notify(work_);
   for (std::thread& t : workers_) t.join();
 }
 
@@ -43,8 +105,10 @@ void RasterLanes::add(const Job& job, const FragmentStagesSetup& setup, Counters
   }
   jobs_[queued_++] = job;
   if (queued_ % kChunk == 0) {
-    publish();
-    run_own_rows();
+    std::unique_lock<std::mutex> lock(mutex_);
+    published_ = queued_;
+    notify(work_);
+    run_groups(0, lock, kHelpBacklog);
   }
 }
 
@@ -55,14 +119,6 @@ void RasterLanes::triangle(const RasterVertex& a, const RasterVertex& b, const R
 
 void RasterLanes::point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass) {
   add(Job{{v, v, v}, TriangleOptions{}, true, size}, setup, pass);
-}
-
-void RasterLanes::publish() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    published_ = queued_;
-  }
-  work_.notify_all();
 }
 
 void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const {
@@ -83,7 +139,7 @@ void RasterLanes::run_task(const std::function<void(int)>& task) {
     task_ = &task;
     ++task_serial_;
   }
-  work_.notify_all();
+  notify(work_);
   std::exception_ptr error;
   try {
     task(0);
@@ -93,72 +149,36 @@ void RasterLanes::run_task(const std::function<void(int)>& task) {
   // Lanes that have not taken the task by now will not; wait for those that have.
   std::unique_lock<std::mutex> lock(mutex_);
   task_ = nullptr;
-  finished_.wait(lock, [&] { return tasks_active_ == 0; });
+  wait(lock, finished_, [&] { return tasks_active_ == 0; });
   if (!error) error = task_error_;
   task_error_ = nullptr;
   if (error) std::rethrow_exception(error);
 }
 
 void RasterLanes::worker(int index) {
-  Lane& lane = *lanes_[static_cast<std::size_t>(index)];
-  std::uint64_t batch = 0, task_serial = 0;
-  std::size_t done = 0;
-  bool reported = false;
-  RasterTarget target;
+  std::uint64_t task_serial = 0;
+  std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
-    std::size_t upto = 0;
-    const std::function<void(int)>* task = nullptr;
-    {
-      std::unique_lock<std::mutex> lock(mutex_);
-      for (;;) {
-        if (stop_) return;
-        if (task_serial_ != task_serial) {
-          task_serial = task_serial_;
-          task = task_;  // null when the calling thread has finished it meanwhile
-          if (task) {
-            ++tasks_active_;
-            break;
-          }
-        }
-        if (batch_ != batch) {
-          batch = batch_;
-          done = 0;
-          reported = false;
-        }
-        if (published_ > done || (closing_ && !reported)) break;
-        work_.wait(lock);
-      }
-      upto = published_;
-    }
-    if (task) {
+    wait(lock, work_, [&] { return stop_ || task_serial_ != task_serial || claimable(index * kGroupsPerLane) >= 0; });
+    if (stop_) return;
+    if (task_serial_ != task_serial) {
+      task_serial = task_serial_;
+      const std::function<void(int)>* task = task_;  // null when the calling thread has finished it meanwhile
+      if (!task) continue;
+      ++tasks_active_;
+      lock.unlock();
       std::exception_ptr error;
       try {
         (*task)(index);
       } catch (...) {
         error = std::current_exception();
       }
-      std::lock_guard<std::mutex> lock(mutex_);
+      lock.lock();
       if (error && !task_error_) task_error_ = error;
-      if (--tasks_active_ == 0) finished_.notify_all();
+      if (--tasks_active_ == 0) notify(finished_);
       continue;
     }
-    if (upto > done) {
-      if (done == 0) {  // a new queue: its setup was written before its first job was published
-        lane.stages.connect(setup_);
-        target = lane_target(index);
-      }
-      try {
-        run_jobs(lane, target, done, upto);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (!error_) error_ = std::current_exception();
-      }
-      done = upto;
-      continue;
-    }
-    std::lock_guard<std::mutex> lock(mutex_);
-    reported = true;
-    if (++finished_lanes_ == static_cast<int>(workers_.size())) finished_.notify_all();
+    run_groups(index, lock);
   }
 }
 
@@ -169,6 +189,7 @@ void RasterLanes::flush(Counters& pass) {
   if (queued_ < kChunk) {
     // Never published: this thread, every row.
     own.stages.connect(setup_);
+    lane_batch_[0] = 0;  // connected for no queue of the lanes
     try {
       run_jobs(own, setup_.target, 0, queued_);
     } catch (...) {
@@ -176,24 +197,15 @@ void RasterLanes::flush(Counters& pass) {
     }
   } else {
     threaded_runs.fetch_add(1, std::memory_order_relaxed);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      published_ = queued_;
-      closing_ = true;
-    }
-    work_.notify_all();
-    try {
-      run_own_rows();
-    } catch (...) {
-      error = std::current_exception();
-    }
     std::unique_lock<std::mutex> lock(mutex_);
-    finished_.wait(lock, [&] { return finished_lanes_ == static_cast<int>(workers_.size()); });
-    if (!error) error = error_;
+    published_ = queued_;
+    notify(work_);
+    run_groups(0, lock);
+    wait(lock, finished_, [&] { return all_run(); });
+    error = error_;
     error_ = nullptr;
     published_ = 0;
-    closing_ = false;
-    finished_lanes_ = 0;
+    for (Group& group : groups_) group.done = 0;
     ++batch_;
   }
   for (const auto& lane : lanes_) {
@@ -201,7 +213,6 @@ void RasterLanes::flush(Counters& pass) {
     lane->counters = Counters{};
   }
   queued_ = 0;
-  own_done_ = 0;
   if (error) std::rethrow_exception(error);
 }
 

@@ -1,13 +1,18 @@
 // Rasterization and the fragment stages on several threads, bit-identical to one thread
 // (docs/threads.md). The calling thread transforms, lights and clips, and queues each
 // primitive with the stage setup it was drawn under; the lanes rasterize the queue as it
-// grows, in order, each over its own rows only. Rows are dealt out in bands of
-// RasterTarget::band_rows: in each cycle the calling thread (lane 0, which also does the
-// vertex work) takes one band and every worker lane kWorkerBands. A pixel is therefore
-// written by one lane, by the same primitives in the same order with the same arithmetic as
-// on one thread; the counters are sums of integers, which do not depend on the order of adding.
+// grows. The window's rows are dealt out to row groups: stripes of kStripeRows rows, group g
+// holding the stripes whose index is g modulo the number of groups. A lane that is free
+// claims a group nobody holds that has queued primitives it has not run, and runs them, in
+// order, over that group's rows only; the calling thread (lane 0) joins in whenever it has
+// queued a chunk. So a pixel is written by the same primitives in the same order with the
+// same arithmetic as on one thread, whichever lane ran them; the counters are sums of
+// integers, which do not depend on the order of adding. Claiming rather than a fixed share
+// keeps both cores busy when one is slower (the calling thread's vertex work, or a core
+// that the host shares).
 #pragma once
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -46,8 +51,16 @@ class RasterLanes {
 
   // The lanes are woken for every this many queued primitives.
   static constexpr std::size_t kChunk = 64;
-  // Bands of each cycle a worker lane takes (the calling thread takes one).
-  static constexpr int kWorkerBands = 15;
+  // Rows of a stripe, and row groups per lane (more groups than lanes, so that a lane never
+  // waits for a group while another has work; few, since a primitive across several groups'
+  // rows is set up once in each).
+  static constexpr int kStripeRows = 8;
+  static constexpr int kGroupsPerLane = 2;
+  // While it queues, the calling thread runs a group only when the group is this many jobs
+  // behind (the workers keep up otherwise; at the end of a queue it runs whatever is left).
+  static constexpr std::size_t kHelpBacklog = 1024;
+  // How long a lane with nothing to do watches for work before it sleeps (see wait).
+  static constexpr std::chrono::microseconds kSpin{200};
   // A queue that ends shorter than a chunk runs on the calling thread alone (the same
   // result, without waking anyone). A queue this long is finished before more is added (bounds its memory).
   static constexpr std::size_t kMaxJobs = 4096;
@@ -64,27 +77,43 @@ class RasterLanes {
     double point_size = 1.0;
   };
   using Lane = LaneStages;
+  // A row group's progress through the published jobs.
+  struct Group {
+    std::size_t done = 0;  // jobs run over its rows
+    bool busy = false;     // a lane is running it
+  };
   void add(const Job& job, const FragmentStagesSetup& setup, Counters& pass);
-  void publish();
   void run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const;
-  RasterTarget lane_target(int index) const;
-  void run_own_rows();  // lane 0's rows of the published jobs
+  RasterTarget group_target(int group) const;
+  // With mutex_ held: a group nobody holds with published jobs it has not run (searched from
+  // `from`), or −1; and whether every group has run every published job.
+  int claimable(int from, std::size_t backlog = 1) const;
+  bool all_run() const;
+  // Lane `index` claims and runs groups until none is claimable; `lock` holds mutex_.
+  void run_groups(int index, std::unique_lock<std::mutex>& lock, std::size_t backlog = 1);
   void worker(int index);
+  // Every change a waiting lane may be waiting for is announced through notify; wait spins
+  // on the announcements for up to kSpin before sleeping on the condition variable (waking a
+  // sleeping thread takes up to a millisecond on a virtual machine, more than a chunk's work).
+  void notify(std::condition_variable& cv);
+  template <class Ready>
+  void wait(std::unique_lock<std::mutex>& lock, std::condition_variable& cv, Ready ready);
 
   std::unique_ptr<Job[]> jobs_;  // fixed storage: the lanes read earlier jobs while later ones are added
   std::size_t queued_ = 0;       // jobs in the queue (written by the calling thread only)
-  std::size_t own_done_ = 0;     // jobs lane 0 has run on its rows
   FragmentStagesSetup setup_;    // of every queued job
   std::vector<std::unique_ptr<Lane>> lanes_;  // [0]: the calling thread's
+  // The queue each lane's stages are connected for (only that lane touches its entry).
+  std::vector<std::uint64_t> lane_batch_;
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
+  std::atomic<std::uint64_t> announcements_{0};
   std::condition_variable work_, finished_;
   // Guarded by mutex_:
+  std::vector<Group> groups_;
   std::size_t published_ = 0;  // jobs the lanes may run
-  bool closing_ = false;       // the queue is complete: lanes report when they have run it
-  std::uint64_t batch_ = 0;    // which queue (lanes reset their progress when it changes)
-  int finished_lanes_ = 0;  // worker lanes done with a closing queue
+  std::uint64_t batch_ = 1;    // which queue (a lane reconnects its stages when it changes)
   bool stop_ = false;
   std::exception_ptr error_;
   // run_task's, guarded by mutex_: the task (null once lane 0 is done with it), which one

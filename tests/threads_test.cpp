@@ -178,6 +178,33 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
   EXPECT_GE(RasterLanes::tasks_run - tasks_before, 24u);  // the blocks did take the lanes' path
 }
 
+// A context on `threads` threads holding a random scene (draw_random_scene), its errors cleared.
+std::unique_ptr<Context> random_scene_context(unsigned seed, int threads) {
+  auto ctx = std::make_unique<Context>(test::small_config(72, 56, 8 + static_cast<int>(seed % 5)));
+  ctx->set_threads(threads);
+  draw_random_scene(*ctx, seed);
+  while (ctx->glGetError() != GL_NO_ERROR) {
+  }  // the scene's own (not the test's)
+  return ctx;
+}
+
+// Random pixel transfer: a scale and a bias, a colour table (enabled or not) and a colour matrix.
+void random_transfer(Context& ctx, std::mt19937& rng, GLenum scale, GLenum bias, GLenum table_target,
+                     GLenum table_format, int table_size, bool table_enabled) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  ctx.glPixelTransferf(scale, 0.5f + unit(rng));
+  ctx.glPixelTransferf(bias, unit(rng) - 0.5f);
+  std::vector<float> table(4 * static_cast<std::size_t>(table_size));
+  for (float& v : table) v = unit(rng);
+  ctx.glColorTable(table_target, table_format, table_size, GL_RGBA, GL_FLOAT, table.data());
+  if (table_enabled) ctx.glEnable(table_target);
+  GLdouble matrix[16];
+  for (double& v : matrix) v = unit(rng) * 0.6;
+  ctx.glMatrixMode(GL_COLOR);
+  ctx.glLoadMatrixd(matrix);
+  ctx.glMatrixMode(GL_MODELVIEW);
+}
+
 TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
   // glCopyPixels's bands on the lanes (Context::copy_bands_on_lanes): random scenes copied
   // through scale and bias, a colour table, the colour matrix, pixel zoom (up, down and
@@ -186,11 +213,7 @@ TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
   const std::uint64_t tasks_before = RasterLanes::tasks_run;
   for (unsigned seed = 1; seed <= 8; ++seed) {
     auto run = [&](int threads) {
-      auto ctx = std::make_unique<Context>(test::small_config(72, 56, 8 + static_cast<int>(seed % 5)));
-      ctx->set_threads(threads);
-      draw_random_scene(*ctx, seed);
-      while (ctx->glGetError() != GL_NO_ERROR) {
-      }  // the scene's own (not this test's)
+      auto ctx = random_scene_context(seed, threads);
       std::mt19937 rng(seed * 7u);
       std::uniform_real_distribution<float> unit(0.0f, 1.0f);
       if (seed % 2 == 0) ctx->glDisable(GL_TEXTURE_2D);  // otherwise rectangles are textured too
@@ -203,17 +226,7 @@ TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
       ctx->glOrtho(0, 72, 0, 56, -1, 1);
       ctx->glMatrixMode(GL_MODELVIEW);
       ctx->glLoadIdentity();
-      ctx->glPixelTransferf(GL_RED_SCALE, 0.5f + unit(rng));
-      ctx->glPixelTransferf(GL_ALPHA_BIAS, unit(rng) - 0.5f);
-      std::vector<float> table(4 * 256);
-      for (float& v : table) v = unit(rng);
-      ctx->glColorTable(GL_COLOR_TABLE, GL_RGBA8, 256, GL_RGBA, GL_FLOAT, table.data());
-      if (seed % 2) ctx->glEnable(GL_COLOR_TABLE);
-      GLdouble matrix[16];
-      for (double& v : matrix) v = unit(rng) * 0.6;
-      ctx->glMatrixMode(GL_COLOR);
-      ctx->glLoadMatrixd(matrix);
-      ctx->glMatrixMode(GL_MODELVIEW);
+      random_transfer(*ctx, rng, GL_RED_SCALE, GL_ALPHA_BIAS, GL_COLOR_TABLE, GL_RGBA8, 256, seed % 2);
       const float zooms[] = {1.0f, 2.0f, 0.5f, -1.0f, 1.5f};
       ctx->glPixelZoom(zooms[seed % 5], zooms[(seed / 2) % 5]);
       if (seed % 3 == 0) {
@@ -238,6 +251,56 @@ TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
     EXPECT_GT(one->total_counters().fragments_written, 0u) << seed;
   }
   EXPECT_GE(RasterLanes::tasks_run - tasks_before, 32u);  // the copies did take the lanes' path
+}
+
+TEST(Threads, TextureCopiesAreTheSameOnAnyNumberOfThreads) {
+  // Copies to colour textures in bands on the lanes (Context::copy_color_texels): random
+  // scenes copied through scale and bias, a colour table and the colour matrix into textures
+  // of several internal formats, whole (glCopyTexImage2D) and in part (glCopyTexSubImage2D),
+  // and, on the calling thread alone, with a convolution.
+  const std::uint64_t tasks_before = RasterLanes::tasks_run;
+  const GLenum formats[] = {GL_RGBA8, GL_RGBA12, GL_LUMINANCE12_ALPHA4, GL_RGB5_A1, GL_INTENSITY16};
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    auto run = [&](int threads) {
+      auto ctx = random_scene_context(seed, threads);
+      std::mt19937 rng(seed * 11u);
+      std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+      random_transfer(*ctx, rng, GL_GREEN_SCALE, GL_BLUE_BIAS, GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_RGBA12, 64,
+                      seed % 2);
+      GLuint tex[2];
+      ctx->glGenTextures(2, tex);
+      ctx->glBindTexture(GL_TEXTURE_2D, tex[0]);
+      const GLenum format = formats[seed % 5];
+      ctx->glCopyTexImage2D(GL_TEXTURE_2D, 0, format, static_cast<GLint>(rng() % 8), static_cast<GLint>(rng() % 8), 64,
+                            32, 0);
+      ctx->glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 3, 5, static_cast<GLint>(rng() % 20), 2, 40, 20);
+      ctx->glBindTexture(GL_TEXTURE_2D, tex[1]);
+      const bool convolved = seed % 3 == 0;
+      if (convolved) {  // a 3x3 convolution (REDUCE: 34 → 32): the whole rectangle on the calling thread
+        std::vector<float> kernel(9 * 4);
+        for (float& v : kernel) v = unit(rng) * 0.2f;
+        ctx->glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, kernel.data());
+        ctx->glEnable(GL_CONVOLUTION_2D);
+      }
+      ctx->glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA12, 0, 0, convolved ? 34 : 32, convolved ? 34 : 32, 0);
+      std::vector<std::vector<float>> texels(2, std::vector<float>(4 * 64 * 32));
+      for (int k = 0; k < 2; ++k) {
+        ctx->glBindTexture(GL_TEXTURE_2D, tex[k]);
+        ctx->glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels[static_cast<std::size_t>(k)].data());
+      }
+      EXPECT_EQ(ctx->glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << seed << " " << threads;
+      return std::make_pair(std::move(ctx), texels);
+    };
+    const auto [one, one_texels] = run(1);
+    for (int threads : {2, 3}) {
+      const auto [many, many_texels] = run(threads);
+      ASSERT_EQ(one_texels, many_texels) << seed << " " << threads;
+      ASSERT_TRUE(one->total_counters() == many->total_counters()) << seed << " " << threads;
+    }
+    EXPECT_GT(one->total_counters().pixels_color_matrix, 0u) << seed;
+    EXPECT_GT(one->total_counters().texture_bits_written, 0u) << seed;
+  }
+  EXPECT_GE(RasterLanes::tasks_run - tasks_before, 2u * 2u * 6u);  // the copies did take the lanes' path
 }
 
 TEST(Threads, ProgramsGiveTheSameImagesAndCountersOnAnyNumberOfThreads) {
