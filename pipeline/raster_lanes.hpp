@@ -54,7 +54,7 @@ class RasterLanes {
   // Rows of a stripe, and row groups per lane (more groups than lanes, so that a lane never
   // waits for a group while another has work; few, since a primitive across several groups'
   // rows is set up once in each).
-  static constexpr int kStripeRows = 8;
+  static constexpr int kStripeRows = 32;
   static constexpr int kGroupsPerLane = 2;
   // While it queues, the calling thread runs a group only when the group is this many jobs
   // behind (the workers keep up otherwise; at the end of a queue it runs whatever is left).
