@@ -28,6 +28,7 @@ namespace passim {
 
 struct FragmentStagesSetup;
 struct LaneStages;
+using RowSplitter = std::function<void(int rows, const std::function<void(int first, int end)>& body)>;
 struct SpanBuffers;
 class FragmentSink;
 struct FragmentOpsInput;
@@ -566,6 +567,10 @@ class Context {
   // lane, each band handed to use(lane, reals, first row, rows) on the lane that made it; the
   // lanes' stages connected to `setup` first when given; their counters added to the pass.
   // For transfers without a convolution, histogram or minmax (per pixel, no order).
+  // Work over ranges of rows split into bands of 16 that every raster lane claims in turn
+  // (for the per-pixel steps of pixel transfer and the convolution); null on one thread.
+  // Only between primitives: nothing may be rasterizing.
+  const RowSplitter* rows_on_lanes();
   using TransferredBandUse = std::function<void(LaneStages& lane, const Rgba* band, int first_row, int rows)>;
   void transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
                                const FragmentStagesSetup* setup, const TransferredBandUse& use);

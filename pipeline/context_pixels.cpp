@@ -352,6 +352,22 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
                           });
 }
 
+const RowSplitter* Context::rows_on_lanes() {
+  if (!scratch_->lanes) return nullptr;
+  if (!scratch_->rows_on_lanes)
+    scratch_->rows_on_lanes = [this](int rows, const std::function<void(int, int)>& body) {
+      constexpr int kBandRows = 16;
+      const int bands = (rows + kBandRows - 1) / kBandRows;
+      if (bands < 2 || !scratch_->lanes) return body(0, rows);
+      std::atomic<int> next_band{0};
+      scratch_->lanes->run_task([&](int) {
+        for (int band = next_band++; band < bands; band = next_band++)
+          body(band * kBandRows, std::min(rows, (band + 1) * kBandRows));
+      });
+    };
+  return &scratch_->rows_on_lanes;
+}
+
 void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
                                       const FragmentStagesSetup* setup, const TransferredBandUse& use) {
   RasterLanes& lanes = *scratch_->lanes;
@@ -530,8 +546,9 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
       rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
       source.to_reals(0, height, rgba.data());
       int w = width, h = height;
-      if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, 2, &scratch_->rectangle_spare) && w > 0 &&
-          h > 0)
+      if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, 2, &scratch_->rectangle_spare,
+                        rows_on_lanes()) &&
+          w > 0 && h > 0)
         draw_pixel_rectangle(w, h, &rgba, nullptr);
       return;
     }

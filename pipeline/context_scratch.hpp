@@ -6,6 +6,7 @@
 #include "pipeline/raster_lanes.hpp"
 #include "stages/fragment_span.hpp"
 #include "stages/fragment_stages.hpp"
+#include "stages/convolution.hpp"
 
 namespace passim {
 
@@ -27,6 +28,8 @@ struct Context::Scratch {
   FragmentStages stages;  // this thread's: [texture] -> [fog] -> per-fragment operations
   // With more than one thread of rasterization: the lanes primitives are queued to.
   std::unique_ptr<RasterLanes> lanes;
+  // Context::rows_on_lanes's splitter.
+  RowSplitter rows_on_lanes;
   // Context::primitive_stages_setup's memo: the setup and the options' parts it sets.
   FragmentStagesSetup primitive_setup;
   TriangleOptions primitive_options;

@@ -148,9 +148,8 @@ int texel_bits(const InternalFormat& f) {
 
 namespace {
 // Rows [y0, y0 + height) of `level` from x0 on, from width × height values (colour or depth).
-// The caller has marked the level's texels changed.
-void write_texels(TextureLevel& level, int x0, int y0, int width, int height, const Rgba* rgba, const double* depth,
-                  Counters& counters) {
+// The caller has marked the level's texels changed, and counts the bits written.
+void write_texels(TextureLevel& level, int x0, int y0, int width, int height, const Rgba* rgba, const double* depth) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t src = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -163,15 +162,21 @@ void write_texels(TextureLevel& level, int x0, int y0, int width, int height, co
         texel_codes(level.format, rgba[src], dst);
       }
     }
-  counters.texture_bits_written += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
-                                   static_cast<std::uint64_t>(texel_bits(level.format));
 }
 }  // namespace
 
 void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int height, const std::vector<Rgba>& rgba,
                            const std::vector<double>* depth) {
   level.texels_changed();
-  write_texels(level, x0, y0, width, height, rgba.data(), depth ? depth->data() : nullptr, counters());
+  const auto rows = [&](int first, int end) {
+    const std::size_t skip = static_cast<std::size_t>(first) * static_cast<std::size_t>(width);
+    write_texels(level, x0, y0 + first, width, end - first, depth ? nullptr : rgba.data() + skip,
+                 depth ? depth->data() + skip : nullptr);
+  };
+  const RowSplitter* split = rows_on_lanes();
+  split ? (*split)(height, rows) : rows(0, height);
+  counters().texture_bits_written += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                                     static_cast<std::uint64_t>(texel_bits(level.format));
 }
 
 void Context::copy_color_texels(int dims, int x, int y, int width, int height, TextureLevel& level, int x0, int y0,
@@ -195,9 +200,10 @@ void Context::copy_color_texels(int dims, int x, int y, int width, int height, T
   const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
   level.texels_changed();
   transfer_bands_on_lanes(source, width, height, dims, kBandRows, nullptr,
-                          [&](LaneStages& lane, const Rgba* band, int first_row, int rows) {
-                            write_texels(level, x0, y0 + first_row, width, rows, band, nullptr, lane.counters);
+                          [&](LaneStages&, const Rgba* band, int first_row, int rows) {
+                            write_texels(level, x0, y0 + first_row, width, rows, band, nullptr);
                           });
+  c.texture_bits_written += n * static_cast<std::uint64_t>(texel_bits(level.format));
 }
 
 void Context::tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
@@ -359,11 +365,17 @@ void Context::read_for_texture(bool depth, int dims, int x, int y, int width, in
     c.depth_bits_read += n * static_cast<std::uint64_t>(f.depth_bits);
     transfer_depth(values, transfer_);
   } else {
-    read_framebuffer_rgba(x, y, width, height, rgba);
+    const RowSplitter* split = rows_on_lanes();
+    const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
+    rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    const auto convert = [&](int first, int end) {
+      source.to_reals(first, end - first, rgba.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(width));
+    };
+    split ? (*split)(height, convert) : convert(0, height);
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
     int w = width, h = height;
-    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims)) rgba.clear();
+    if (!transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), c, dims, nullptr, split)) rgba.clear();
   }
 }
 

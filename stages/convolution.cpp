@@ -77,7 +77,7 @@ Rgba ConvolutionFilter::tap(int n, int m) const {
 }
 
 void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& f, Counters& counters,
-              ConvolutionKernel kernel, std::vector<Rgba>* spare) {
+              ConvolutionKernel kernel, std::vector<Rgba>* spare, const RowSplitter* split) {
   const int ws = width, hs = height, wf = f.width, hf = f.height;
   const bool reduce = f.border_mode == GL_REDUCE;
   const int wo = reduce ? ws - wf + 1 : ws, ho = reduce ? hs - hf + 1 : hs;
@@ -130,7 +130,8 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
   const bool wide = false;
   (void)kernel;
 #endif
-  for (int j = 0; j < ho; ++j)
+  auto output_rows = [&](int first_row, int end_row) {
+  for (int j = first_row; j < end_row; ++j)
     for (int i = 0; i < wo; ++i) {
       const bool row_inside = j - ch >= 0 && j - ch + hf <= hs;
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
@@ -156,6 +157,9 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
       Rgba& o = out[static_cast<std::size_t>(j * wo + i)];
       for (int k = 0; k < 4; ++k) o[static_cast<std::size_t>(k)] = conv[k] ? sum[k] : anchor[static_cast<std::size_t>(k)];
     }
+  };
+  if (split) (*split)(ho, output_rows);
+  else output_rows(0, ho);
   counters.convolution_taps += static_cast<std::uint64_t>(wo) * static_cast<std::uint64_t>(ho) *
                                static_cast<std::uint64_t>(wf) * static_cast<std::uint64_t>(hf);
   counters.pixels_convolved += static_cast<std::uint64_t>(wo) * static_cast<std::uint64_t>(ho);

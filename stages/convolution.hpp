@@ -3,6 +3,7 @@
 // CONSTANT_BORDER and REPLICATE_BORDER (same size, centred on ⌊Wf/2⌋, ⌊Hf/2⌋); the filter's
 // base format chooses the convolved components (Table 3.14). No clamping.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "pipeline/counters.hpp"
@@ -32,8 +33,13 @@ struct ConvolutionFilter {
 // order — the results are the same bits (tests/pixel_transfer_kernels_test.cpp).
 // `spare`, when given, is storage the output is built in and the input's storage is
 // handed back in (a caller that convolves often keeps its allocation).
+// `split`, when given, runs the output rows' work as it chooses (on several threads): it
+// must call body(first, end) once for each range of a partition of [0, rows). Every output
+// row is computed alone from the input, so any partition gives the same bits.
 enum class ConvolutionKernel { Scalar, Fastest };
+using RowSplitter = std::function<void(int rows, const std::function<void(int first, int end)>& body)>;
 void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters,
-              ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr);
+              ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr,
+              const RowSplitter* split = nullptr);
 
 }  // namespace passim

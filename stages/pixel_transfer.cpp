@@ -110,22 +110,35 @@ void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[
 }
 
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
-                   Counters& counters, int dims, std::vector<Rgba>* spare) {
+                   Counters& counters, int dims, std::vector<Rgba>* spare, const RowSplitter* split) {
   const TransferPlan plan = plan_transfer(s, m);
   const bool wide = cpu_has_avx2();
   const std::uint64_t n_in = pixels.size();
-  (wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar)(plan, pixels.data(),
-                                                                                              pixels.size());
+  // Per-pixel work over the current image's rows, split as `split` chooses.
+  auto by_rows = [&](auto&& per_pixels) {
+    const std::size_t w = static_cast<std::size_t>(std::max(width, 0));
+    const auto rows = [&](int first, int end) {
+      per_pixels(pixels.data() + w * static_cast<std::size_t>(first), w * static_cast<std::size_t>(end - first));
+    };
+    if (split && w > 0 && pixels.size() == w * static_cast<std::size_t>(std::max(height, 0))) (*split)(height, rows);
+    else per_pixels(pixels.data(), pixels.size());
+  };
+  const auto pre = wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar;
+  by_rows([&](Rgba* p, std::size_t n) { pre(plan, p, n); });
   // Step 5: convolution, then the post-convolution scale and bias (only when a convolution
   // ran, A14). No clamp between convolution and the colour matrix.
   const ConvolutionFilter* filter = active_convolution(s, dims);
   if (filter) {
-    convolve(pixels, width, height, *filter, counters, ConvolutionKernel::Fastest, spare);
-    for (Rgba& p : pixels)
-      for (int k = 0; k < 4; ++k)
-        p[static_cast<std::size_t>(k)] = p[static_cast<std::size_t>(k)] * s.post_convolution_scale[k] + s.post_convolution_bias[k];
+    convolve(pixels, width, height, *filter, counters, ConvolutionKernel::Fastest, spare, split);
+    by_rows([&](Rgba* p, std::size_t n) {
+      for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 4; ++k)
+          p[i][static_cast<std::size_t>(k)] =
+              p[i][static_cast<std::size_t>(k)] * s.post_convolution_scale[k] + s.post_convolution_bias[k];
+    });
   }
-  (wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar)(plan, pixels.data(), pixels.size());
+  const auto post = wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar;
+  by_rows([&](Rgba* p, std::size_t n) { post(plan, p, n); });
   const bool scale_bias = plan.scale_bias, matrix = plan.color_matrix;
   const bool use0 = plan.tables[0] != nullptr, use1 = plan.tables[1] != nullptr, use2 = plan.tables[2] != nullptr;
   const std::uint64_t n = pixels.size();

@@ -106,9 +106,12 @@ void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[
 // order; a REDUCE convolution changes width and height. `dims` is 1 for 1D textures.
 // Returns false when a histogram or minmax sink consumed the pixels (nothing further is
 // drawn, returned or stored).
-// `spare`: storage for the convolution's output (see convolve).
+// `spare`: storage for the convolution's output (see convolve). `split`: runs the per-pixel
+// steps and the convolution by ranges of rows as it chooses (see convolve); the histogram
+// and minmax run whole, in order.
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& state,
-                   const Mat4& color_matrix, Counters& counters, int dims = 2, std::vector<Rgba>* spare = nullptr);
+                   const Mat4& color_matrix, Counters& counters, int dims = 2, std::vector<Rgba>* spare = nullptr,
+                   const RowSplitter* split = nullptr);
 void transfer_depth(std::vector<double>& depth, const PixelTransferState& state);
 // Stencil indices (§3.6.5 "arithmetic on indices"): shifted by INDEX_SHIFT (left when
 // positive, right when negative, keeping the fraction), INDEX_OFFSET added, then with
