@@ -705,7 +705,11 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   constexpr std::size_t kChunkTriangles = 32;
   const std::size_t chunks = (triangles + kChunkTriangles - 1) / kChunkTriangles;
   std::vector<Scratch::BatchLane>& works = scratch_->batch_lanes;
-  std::vector<std::vector<Scratch::BatchTriangle>>& drawn = scratch_->batch_chunks;
+  // The chunks' storage: the set the raster queue may still refer to is run first.
+  const int set = scratch_->next_chunk_set;
+  scratch_->next_chunk_set = 1 - set;
+  if (lanes.pending() && scratch_->chunk_set_queue[set] == lanes.queue_serial()) lanes.flush(pass);
+  std::vector<std::vector<AssembledTriangle>>& drawn = scratch_->batch_chunks[set];
   works.resize(static_cast<std::size_t>(lanes.lanes()));
   if (drawn.size() < chunks) drawn.resize(chunks);
   for (Scratch::BatchLane& share : works) {  // a lane that takes no part adds nothing
@@ -718,7 +722,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     PolygonWork& work = share.work;
     Counters& counted = share.counters;
     for (std::size_t chunk = next_chunk++; chunk < chunks; chunk = next_chunk++) {
-      std::vector<Scratch::BatchTriangle>& out = drawn[chunk];
+      std::vector<AssembledTriangle>& out = drawn[chunk];
       out.clear();
       const std::size_t last = std::min(triangles, (chunk + 1) * kChunkTriangles);
       for (std::size_t t = chunk * kChunkTriangles; t < last; ++t) {
@@ -736,7 +740,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
         if (!drawn_here) continue;
         const std::vector<RasterVertex>& win = work.window;
         for (std::size_t k = 1; k + 1 < win.size(); ++k)
-          out.push_back(Scratch::BatchTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
+          out.push_back(AssembledTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
       }
     }
   });
@@ -762,9 +766,11 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   }
   if (setup) {
     raster_queued_ = true;
+    // By reference (each triangle's options are these but for its flat colour).
+    const TriangleOptions options = polygon_options(setup_options, Vec4{});
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-      for (const Scratch::BatchTriangle& t : drawn[chunk])
-        lanes.triangle(t.v[0], t.v[1], t.v[2], polygon_options(setup_options, t.flat_color), *setup, pass);
+      lanes.triangles(drawn[chunk].data(), drawn[chunk].size(), options, *setup, pass);
+    scratch_->chunk_set_queue[set] = lanes.queue_serial();
   }
   prim_vertex_count_ += 3 * triangles;
   // The vertices after the last whole triangle wait for the next, as their calls would leave them.

@@ -36,11 +36,6 @@ struct Context::Scratch {
   PolygonWork polygon_work;  // draw_polygon's
   // draw_triangle_batch's: each lane's work (scratch, counters, warnings), and what each
   // chunk of the batch's triangles draws, whichever lane assembled it.
-  struct BatchTriangle {
-    RasterVertex v[3];
-    Vec4 flat_color;
-    std::size_t source;  // the block's triangle it comes from
-  };
   struct BatchLane {
     PolygonWork work;
     Counters counters;  // vertices, lighting and texgen evaluations, primitives in, clipped, culled
@@ -55,7 +50,11 @@ struct Context::Scratch {
     std::vector<Rgba> band;
   };
   std::vector<std::unique_ptr<PixelLane>> pixel_lanes;
-  std::vector<std::vector<BatchTriangle>> batch_chunks;
+  // Two sets of chunks, used in turn: the raster queue refers to a set's triangles until it
+  // is run (chunk_set_queue: the queue that last took a set's triangles).
+  std::vector<std::vector<AssembledTriangle>> batch_chunks[2];
+  std::uint64_t chunk_set_queue[2] = {0, 0};
+  int next_chunk_set = 0;
   // A copied rectangle and the convolution's output: kept between calls, so that a copy of
   // the whole window does not map and fault in fresh pages each time.
   std::vector<Rgba> rectangle, rectangle_spare;

@@ -96,7 +96,7 @@ RasterLanes::~RasterLanes() {
   for (std::thread& t : workers_) t.join();
 }
 
-void RasterLanes::add(const Job& job, const FragmentStagesSetup& setup, Counters& pass) {
+void RasterLanes::add(const Job& job, std::size_t primitives, const FragmentStagesSetup& setup, Counters& pass) {
   if (queued_ > 0 && (queued_ >= kMaxJobs || !(setup == setup_))) flush(pass);
   if (queued_ == 0) {
     setup_ = setup;
@@ -104,7 +104,9 @@ void RasterLanes::add(const Job& job, const FragmentStagesSetup& setup, Counters
     if (setup_.texture) TextureStage::make_caches(setup_.texture_setup);
   }
   jobs_[queued_++] = job;
-  if (queued_ % kChunk == 0) {
+  const std::size_t before = primitives_;
+  primitives_ += primitives;
+  if (primitives_ / kChunk != before / kChunk) {
     std::unique_lock<std::mutex> lock(mutex_);
     published_ = queued_;
     notify(work_);
@@ -114,17 +116,35 @@ void RasterLanes::add(const Job& job, const FragmentStagesSetup& setup, Counters
 
 void RasterLanes::triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                            const TriangleOptions& options, const FragmentStagesSetup& setup, Counters& pass) {
-  add(Job{{a, b, c}, options, false, 1.0}, setup, pass);
+  add(Job{{a, b, c}, options, false, 1.0}, 1, setup, pass);
+}
+
+void RasterLanes::triangles(const AssembledTriangle* first, std::size_t count, const TriangleOptions& options,
+                            const FragmentStagesSetup& setup, Counters& pass) {
+  if (count == 0) return;
+  Job job;
+  job.options = options;
+  job.run = first;
+  job.run_count = count;
+  add(job, count, setup, pass);
 }
 
 void RasterLanes::point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass) {
-  add(Job{{v, v, v}, TriangleOptions{}, true, size}, setup, pass);
+  add(Job{{v, v, v}, TriangleOptions{}, true, size}, 1, setup, pass);
 }
 
 void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const {
   for (std::size_t k = from; k < to; ++k) {
     const Job& job = jobs_[k];
-    if (job.is_point)
+    if (job.run) {
+      TriangleOptions options = job.options;
+      for (std::size_t t = 0; t < job.run_count; ++t) {
+        const AssembledTriangle& triangle = job.run[t];
+        options.flat_color = triangle.flat_color;
+        rasterize_triangle(triangle.v[0], triangle.v[1], triangle.v[2], options, target, lane.spans,
+                           *lane.stages.first, lane.counters);
+      }
+    } else if (job.is_point)
       rasterize_point(job.v[0], job.point_size, target, lane.spans, *lane.stages.first, lane.counters);
     else
       rasterize_triangle(job.v[0], job.v[1], job.v[2], job.options, target, lane.spans, *lane.stages.first,
@@ -186,7 +206,7 @@ void RasterLanes::flush(Counters& pass) {
   if (queued_ == 0) return;
   std::exception_ptr error;
   Lane& own = *lanes_[0];
-  if (queued_ < kChunk) {
+  if (primitives_ < kChunk) {
     // Never published: this thread, every row.
     own.stages.connect(setup_);
     lane_batch_[0] = 0;  // connected for no queue of the lanes
@@ -213,6 +233,7 @@ void RasterLanes::flush(Counters& pass) {
     lane->counters = Counters{};
   }
   queued_ = 0;
+  primitives_ = 0;
   if (error) std::rethrow_exception(error);
 }
 

@@ -25,6 +25,14 @@
 
 namespace passim {
 
+// A triangle a display-list block assembled (Context::draw_triangle_batch): its window
+// vertices, the colour flat shading gives it, and the block's triangle it comes from.
+struct AssembledTriangle {
+  RasterVertex v[3];
+  Vec4 flat_color;
+  std::size_t source;
+};
+
 class RasterLanes {
  public:
   // `lanes` >= 2: the calling thread and lanes − 1 workers.
@@ -40,6 +48,13 @@ class RasterLanes {
   void triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, const TriangleOptions& options,
                 const FragmentStagesSetup& setup, Counters& pass);
   void point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass);
+  // Queue `count` triangles drawn with `options` but each its own flat colour, by reference:
+  // they must stay as they are until the queue is run (queue_serial() has moved on, or
+  // pending() is false).
+  void triangles(const AssembledTriangle* first, std::size_t count, const TriangleOptions& options,
+                 const FragmentStagesSetup& setup, Counters& pass);
+  // Which queue is being filled: it changes when a queue has been run.
+  std::uint64_t queue_serial() const { return batch_; }
   // Finish the queue; the lanes' counters are added to `pass`.
   void flush(Counters& pass);
   // Run task(lane) on the calling thread (lane 0) and on every worker lane that is free to
@@ -75,6 +90,8 @@ class RasterLanes {
     TriangleOptions options;
     bool is_point = false;
     double point_size = 1.0;
+    const AssembledTriangle* run = nullptr;  // triangles queued by reference: v unused
+    std::size_t run_count = 0;
   };
   using Lane = LaneStages;
   // A row group's progress through the published jobs.
@@ -82,7 +99,8 @@ class RasterLanes {
     std::size_t done = 0;  // jobs run over its rows
     bool busy = false;     // a lane is running it
   };
-  void add(const Job& job, const FragmentStagesSetup& setup, Counters& pass);
+  // Queue a job of `primitives` primitives; the lanes are woken at every kChunk primitives.
+  void add(const Job& job, std::size_t primitives, const FragmentStagesSetup& setup, Counters& pass);
   void run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const;
   RasterTarget group_target(int group) const;
   // With mutex_ held: a group nobody holds with published jobs it has not run (searched from
@@ -101,6 +119,7 @@ class RasterLanes {
 
   std::unique_ptr<Job[]> jobs_;  // fixed storage: the lanes read earlier jobs while later ones are added
   std::size_t queued_ = 0;       // jobs in the queue (written by the calling thread only)
+  std::size_t primitives_ = 0;   // primitives in those jobs (likewise)
   FragmentStagesSetup setup_;    // of every queued job
   std::vector<std::unique_ptr<Lane>> lanes_;  // [0]: the calling thread's
   // The queue each lane's stages are connected for (only that lane touches its entry).

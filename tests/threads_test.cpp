@@ -141,21 +141,34 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
       if (seed % 3 == 0) ctx->glEnable(GL_CULL_FACE);
       ctx->glNormal3d(0.0, 0.0, 1.0);  // inherited by the block's first vertices
       ctx->glEnable(GL_TEXTURE_2D);     // incomplete: the stage setup warns, at the first triangle drawn
-      const GLuint list = ctx->glGenLists(1);
-      ctx->glNewList(list, GL_COMPILE);
-      ctx->glBegin(GL_TRIANGLES);
-      const int vertices = 3 * 150 + 2;
+      auto make_list = [&](int nan_vertex) {
+        const GLuint list = ctx->glGenLists(1);
+        ctx->glNewList(list, GL_COMPILE);
+        ctx->glBegin(GL_TRIANGLES);
+        const int vertices = 3 * 150 + 2;
+        for (int k = 0; k < vertices; ++k) {
+          if (k >= 4 && rng() % 3 == 0) ctx->glNormal3d(unit(rng), unit(rng), unit(rng));
+          ctx->glVertex4d(k == nan_vertex ? std::nan("") : pos(rng), pos(rng), z(rng), 1.0);
+        }
+        ctx->glEnd();
+        ctx->glEndList();
+        return list;
+      };
       // A vertex with a NaN coordinate (a warning where its triangle is met): in the first
       // triangle for odd seeds, the 101st for even ones.
-      const int nan_vertex = seed % 2 ? 1 : 301;
-      for (int k = 0; k < vertices; ++k) {
-        if (k >= 4 && rng() % 3 == 0) ctx->glNormal3d(unit(rng), unit(rng), unit(rng));
-        ctx->glVertex4d(k == nan_vertex ? std::nan("") : pos(rng), pos(rng), z(rng), 1.0);
-      }
-      ctx->glEnd();
+      const GLuint list = make_list(seed % 2 ? 1 : 301);
+      ctx->glCallList(list);
+      ctx->glCallList(list);
+      // Three blocks in one call, under the same state: queued one after the other by
+      // reference (two sets of chunks in turn: the third block's must wait for the first's).
+      const GLuint others[2] = {make_list(-1), make_list(-1)};
+      const GLuint outer = ctx->glGenLists(1);
+      ctx->glNewList(outer, GL_COMPILE);
+      ctx->glCallList(list);
+      ctx->glCallList(others[0]);
+      ctx->glCallList(others[1]);
       ctx->glEndList();
-      ctx->glCallList(list);
-      ctx->glCallList(list);
+      ctx->glCallList(outer);
       return ctx;
     };
     const auto one = run(1);
