@@ -709,7 +709,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   const int set = scratch_->next_chunk_set;
   scratch_->next_chunk_set = 1 - set;
   if (lanes.pending() && scratch_->chunk_set_queue[set] == lanes.queue_serial()) lanes.flush(pass);
-  std::vector<std::vector<AssembledTriangle>>& drawn = scratch_->batch_chunks[set];
+  std::vector<Scratch::BatchChunk>& drawn = scratch_->batch_chunks[set];
   works.resize(static_cast<std::size_t>(lanes.lanes()));
   if (drawn.size() < chunks) drawn.resize(chunks);
   for (Scratch::BatchLane& share : works) {  // a lane that takes no part adds nothing
@@ -722,7 +722,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     PolygonWork& work = share.work;
     Counters& counted = share.counters;
     for (std::size_t chunk = next_chunk++; chunk < chunks; chunk = next_chunk++) {
-      std::vector<AssembledTriangle>& out = drawn[chunk];
+      std::vector<AssembledTriangle>& out = drawn[chunk].triangles;
       out.clear();
       const std::size_t last = std::min(triangles, (chunk + 1) * kChunkTriangles);
       for (std::size_t t = chunk * kChunkTriangles; t < last; ++t) {
@@ -753,7 +753,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     for (int kind = 0; kind < 2; ++kind) first_warned[kind] = std::min(first_warned[kind], share.first_warned[kind]);
   }
   for (std::size_t chunk = 0; chunk < chunks && first_drawn == SIZE_MAX; ++chunk)
-    if (!drawn[chunk].empty()) first_drawn = drawn[chunk].front().source;
+    if (!drawn[chunk].triangles.empty()) first_drawn = drawn[chunk].triangles.front().source;
   std::array<std::pair<std::size_t, int>, 3> events{
       {{first_warned[0], 0}, {first_warned[1], 1}, {first_drawn, 2}}};
   std::sort(events.begin(), events.end());
@@ -769,7 +769,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     // By reference (each triangle's options are these but for its flat colour).
     const TriangleOptions options = polygon_options(setup_options, Vec4{});
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-      lanes.triangles(drawn[chunk].data(), drawn[chunk].size(), options, *setup, pass);
+      lanes.triangles(drawn[chunk].triangles.data(), drawn[chunk].triangles.size(), options, *setup, pass);
     scratch_->chunk_set_queue[set] = lanes.queue_serial();
   }
   prim_vertex_count_ += 3 * triangles;

@@ -43,7 +43,8 @@ struct FragmentStages {
 
 // A thread's own chain with what it works in: span buffers, and counters the chain counts
 // into (added to a pass's by the owner). Not movable: the chain holds `counting` by reference.
-struct LaneStages {
+// On cache lines of its own: lanes count into theirs side by side.
+struct alignas(64) LaneStages {
   LaneStages(Framebuffer& fb, int width) : spans(width), stages(fb, counting) {}
   LaneStages(const LaneStages&) = delete;
   LaneStages& operator=(const LaneStages&) = delete;
