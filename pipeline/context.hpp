@@ -563,14 +563,17 @@ class Context {
   // transferred and drawn on every raster lane: the same pixels and counters.
   void copy_bands_on_lanes(const SourceCodes& source, const RectanglePlacement& placement, int width, int height,
                            int band_rows);
+  // body(lane, first, end) for the bands [first, end) of band_rows rows that cover [0, rows),
+  // each run by whichever raster lane claims it next (the calling thread among them). Only
+  // between primitives: nothing may be rasterizing.
+  void bands_on_lanes(int rows, int band_rows, const std::function<void(int lane, int first, int end)>& body);
+  // Work over ranges of rows split into bands of 16 on the raster lanes (bands_on_lanes; for
+  // the per-pixel steps of pixel transfer and the convolution); null on one thread.
+  const RowSplitter* rows_on_lanes();
   // The bands of `source` (band_rows rows each) converted and transferred on every raster
   // lane, each band handed to use(lane, reals, first row, rows) on the lane that made it; the
   // lanes' stages connected to `setup` first when given; their counters added to the pass.
   // For transfers without a convolution, histogram or minmax (per pixel, no order).
-  // Work over ranges of rows split into bands of 16 that every raster lane claims in turn
-  // (for the per-pixel steps of pixel transfer and the convolution); null on one thread.
-  // Only between primitives: nothing may be rasterizing.
-  const RowSplitter* rows_on_lanes();
   using TransferredBandUse = std::function<void(LaneStages& lane, const Rgba* band, int first_row, int rows)>;
   void transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
                                const FragmentStagesSetup* setup, const TransferredBandUse& use);

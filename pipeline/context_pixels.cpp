@@ -352,45 +352,43 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
                           });
 }
 
+void Context::bands_on_lanes(int rows, int band_rows, const std::function<void(int, int, int)>& body) {
+  const int bands = (rows + band_rows - 1) / band_rows;
+  std::atomic<int> next_band{0};
+  scratch_->lanes->run_task([&](int lane) {
+    for (int band = next_band++; band < bands; band = next_band++)
+      body(lane, band * band_rows, std::min(rows, (band + 1) * band_rows));
+  });
+}
+
 const RowSplitter* Context::rows_on_lanes() {
   if (!scratch_->lanes) return nullptr;
   if (!scratch_->rows_on_lanes)
     scratch_->rows_on_lanes = [this](int rows, const std::function<void(int, int)>& body) {
       constexpr int kBandRows = 16;
-      const int bands = (rows + kBandRows - 1) / kBandRows;
-      if (bands < 2 || !scratch_->lanes) return body(0, rows);
-      std::atomic<int> next_band{0};
-      scratch_->lanes->run_task([&](int) {
-        for (int band = next_band++; band < bands; band = next_band++)
-          body(band * kBandRows, std::min(rows, (band + 1) * kBandRows));
-      });
+      if (rows <= kBandRows || !scratch_->lanes) return body(0, rows);
+      bands_on_lanes(rows, kBandRows, [&](int, int first, int end) { body(first, end); });
     };
   return &scratch_->rows_on_lanes;
 }
 
 void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
                                       const FragmentStagesSetup* setup, const TransferredBandUse& use) {
-  RasterLanes& lanes = *scratch_->lanes;
   std::vector<std::unique_ptr<Scratch::PixelLane>>& pixel_lanes = scratch_->pixel_lanes;
-  while (pixel_lanes.size() < static_cast<std::size_t>(lanes.lanes()))
+  while (pixel_lanes.size() < static_cast<std::size_t>(scratch_->lanes->lanes()))
     pixel_lanes.push_back(std::make_unique<Scratch::PixelLane>(fb_, fb_.config.width));
   for (auto& lane : pixel_lanes) {
     lane->counters = Counters{};
     if (setup) lane->stages.connect(*setup);
   }
   const Mat4& matrix = transform_.color.back();
-  const int bands = (height + band_rows - 1) / band_rows;
-  std::atomic<int> next_band{0};
-  lanes.run_task([&](int index) {
+  bands_on_lanes(height, band_rows, [&](int index, int first, int end) {
     Scratch::PixelLane& lane = *pixel_lanes[static_cast<std::size_t>(index)];
-    for (int band = next_band++; band < bands; band = next_band++) {
-      const int j = band * band_rows;
-      int rows = std::min(band_rows, height - j), w = width;
-      lane.band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
-      source.to_reals(j, rows, lane.band.data());
-      transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters, dims);
-      use(lane, lane.band.data(), j, rows);
-    }
+    int rows = end - first, w = width;
+    lane.band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
+    source.to_reals(first, rows, lane.band.data());
+    transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters, dims);
+    use(lane, lane.band.data(), first, rows);
   });
   Counters& c = counters();
   for (const auto& lane : pixel_lanes) c += lane->counters;
