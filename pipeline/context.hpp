@@ -485,7 +485,9 @@ class Context {
                         std::vector<double>& values);
   // The size an image has after a REDUCE convolution for `dims` (unchanged otherwise).
   void reduced_size(int dims, int& width, int& height) const;
-  void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const;
+  // `split`: the conversion by ranges of rows (rows_on_lanes), or whole.
+  void read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out,
+                             const RowSplitter* split = nullptr) const;
   // A rectangle of the read buffer kept as its codes (8 bytes a pixel rather than 32), for
   // conversion a band of rows at a time (§4.3.2: code k reads as k/(2^n − 1), A = 1 without
   // alpha bits; pixels outside the window are undefined: they read as 0 here).

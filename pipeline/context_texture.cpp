@@ -366,12 +366,7 @@ void Context::read_for_texture(bool depth, int dims, int x, int y, int width, in
     transfer_depth(values, transfer_);
   } else {
     const RowSplitter* split = rows_on_lanes();
-    const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
-    rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    const auto convert = [&](int first, int end) {
-      source.to_reals(first, end - first, rgba.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(width));
-    };
-    split ? (*split)(height, convert) : convert(0, height);
+    read_framebuffer_rgba(x, y, width, height, rgba, split);
     c.color_bits_read +=
         n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
     int w = width, h = height;
@@ -468,11 +463,15 @@ void Context::SourceCodes::to_reals(int first_row, int rows, Rgba* out) const {
   }
 }
 
-void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out) const {
+void Context::read_framebuffer_rgba(int x, int y, int width, int height, std::vector<Rgba>& out,
+                                    const RowSplitter* split) const {
   // Read in place: nothing draws between the reading and the conversion.
   const SourceCodes src = read_framebuffer_codes(x, y, width, height, nullptr);
   out.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  src.to_reals(0, height, out.data());
+  const auto convert = [&](int first, int end) {
+    src.to_reals(first, end - first, out.data() + static_cast<std::size_t>(first) * static_cast<std::size_t>(width));
+  };
+  split ? (*split)(height, convert) : convert(0, height);
 }
 
 void Context::read_framebuffer_depth(int x, int y, int width, int height, std::vector<double>& out) const {
