@@ -344,10 +344,22 @@ void Context::prepare_vertex_processing() {
 
 ProcessedVertex Context::process_vertex(const Vec4& object, Counters& c) {
   prepare_vertex_processing();
-  return transform_vertex(object, current_.normal, c);
+  count_vertex_processing(c, 1);
+  return transform_vertex(object, current_.normal);
 }
 
-ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal, Counters& c) const {
+void Context::count_vertex_processing(Counters& c, std::uint64_t vertices) const {
+  // The modelled machine lights every vertex (and both faces with two-sided lighting), and
+  // evaluates each enabled texgen coordinate while a texture target is enabled; the counters
+  // say so. (The simulator lights only the faces of polygons that survive culling, and a
+  // display-list block's distinct vertices once: the same bits.)
+  if (lighting_.enabled) c.lighting_evaluations += vertices * (lighting_.two_side ? 2 : 1);
+  if (texturing_enabled_)
+    for (const TexGenState& g : textures_.gen)
+      if (g.enabled) c.texgen_evaluations += vertices;
+}
+
+ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal) const {
   // §2.10-2.13: transformation, lighting inputs or colour, texture coordinates. The result
   // is assembled at the end from locals, with no call in between, so that the compiler drops
   // the default initialisers' stores (a 128-byte memset per vertex, a third of this
@@ -374,10 +386,7 @@ ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal
     }
   }
   if (lighting_.enabled) {
-    // The modelled machine lights every vertex (and both faces with two-sided lighting); the
-    // counter says so. The simulator evaluates the equation only for the faces of polygons
-    // that survive culling (light_pending), which gives the same bits.
-    c.lighting_evaluations += lighting_.two_side ? 2 : 1;
+    // Lit when the polygon's facing is known (light_pending_vertex).
     material_index = static_cast<std::uint32_t>(vertex_materials_.size() - 1);
     light_pending = true;
   } else {
@@ -392,7 +401,6 @@ ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal
     for (int k = 0; k < 4; ++k) {
       const TexGenState& g = textures_.gen[static_cast<std::size_t>(k)];
       if (!g.enabled) continue;
-      ++c.texgen_evaluations;
       if (g.mode == GL_OBJECT_LINEAR) {
         tc[k] = glm::dot(g.object_plane, object);
       } else if (g.mode == GL_EYE_LINEAR) {
@@ -599,19 +607,9 @@ bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count
       return false;
     }
   }
-  double area = 0.0;
-  for (std::size_t k = 0; k < win.size(); ++k) {
-    const RasterVertex& a = win[k];
-    const RasterVertex& b = win[(k + 1) % win.size()];
-    area += a.x * b.y - b.x * a.y;
-  }
-  const bool front = (polygon_.front_face == GL_CCW) ? area > 0.0 : area < 0.0;
-  if (polygon_.cull_enabled &&
-      (polygon_.cull_face == GL_FRONT_AND_BACK || (front ? polygon_.cull_face == GL_FRONT : polygon_.cull_face == GL_BACK))) {
-    ++c.primitives_culled;
-    return false;
-  }
-  const int face = (lighting_.enabled && lighting_.two_side && !front) ? 1 : 0;
+  const Facing facing = polygon_facing(win.data(), win.size(), c);
+  if (!facing.drawn) return false;
+  const int face = facing.face;
   ProcessedVertex flat_source = provoking;
   if (provoking.light_pending) {
     // Light the polygon's vertices for the face that is drawn, then clip again with the lit
@@ -631,9 +629,28 @@ bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count
   } else if (face == 1) {
     for (std::size_t k = 0; k < poly.size(); ++k) win[k].color = poly[k].color[1];
   }
-  work.mode = front ? polygon_.mode_front : polygon_.mode_back;
+  work.mode = facing.front ? polygon_.mode_front : polygon_.mode_back;
   work.flat_color = flat_source.color[static_cast<std::size_t>(face)];
   return true;
+}
+
+Context::Facing Context::polygon_facing(const RasterVertex* win, std::size_t count, Counters& c) const {
+  double area = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const RasterVertex& a = win[k];
+    const RasterVertex& b = win[(k + 1) % count];
+    area += a.x * b.y - b.x * a.y;
+  }
+  Facing f;
+  f.front = (polygon_.front_face == GL_CCW) ? area > 0.0 : area < 0.0;
+  if (polygon_.cull_enabled && (polygon_.cull_face == GL_FRONT_AND_BACK ||
+                                (f.front ? polygon_.cull_face == GL_FRONT : polygon_.cull_face == GL_BACK))) {
+    ++c.primitives_culled;
+    return f;
+  }
+  f.drawn = true;
+  f.face = (lighting_.enabled && lighting_.two_side && !f.front) ? 1 : 0;
+  return f;
 }
 
 void Context::note_polygon_warnings(unsigned warnings) {
@@ -697,7 +714,35 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   RasterLanes& lanes = *scratch_->lanes;
   prepare_vertex_processing();
   const Vec3 start_normal = current_.normal;
-  const std::size_t count = batch.positions.size(), triangles = count / 3;
+  const std::size_t count = batch.vertices.size(), triangles = count / 3;
+  pass.vertices += 3 * triangles;
+  count_vertex_processing(pass, 3 * triangles);
+  // The distinct vertices, in chunks on whichever lane asks next: transformed, and those
+  // that can be drawn as they are (see Scratch::BatchVertex) placed in the window and lit.
+  const std::size_t distinct = batch.positions.size();
+  std::vector<Scratch::BatchVertex>& vertices = scratch_->batch_vertices;
+  if (vertices.size() < distinct) vertices.resize(distinct);
+  const ClipPlanes planes = clip_planes_of(transform_);
+  const int faces = lighting_.enabled && lighting_.two_side ? 2 : 1;
+  std::atomic<std::size_t> next_vertex{0};
+  lanes.run_task([&](int) {
+    constexpr std::size_t kChunkVertices = 64;
+    for (std::size_t first = next_vertex.fetch_add(kChunkVertices); first < distinct;
+         first = next_vertex.fetch_add(kChunkVertices)) {
+      for (std::size_t i = first; i < std::min(distinct, first + kChunkVertices); ++i) {
+        Scratch::BatchVertex& d = vertices[i];
+        d.vertex = transform_vertex(batch.positions[i], batch.inherits[i] ? start_normal : batch.normals[i]);
+        d.window = to_window(d.vertex, 0);
+        d.simple = finite_vertex(d.vertex) && trivially_inside(d.vertex, planes) && d.window.finite_position();
+        if (!d.simple || !d.vertex.light_pending) continue;
+        for (int face = 0; face < faces; ++face) {
+          ProcessedVertex lit = d.vertex;
+          light_pending_vertex(lit, face);
+          d.lit[static_cast<std::size_t>(face)] = lit.color[static_cast<std::size_t>(face)];
+        }
+      }
+    }
+  });
   // Chunks of triangles go to whichever lane asks next (a worker still rasterizing what is
   // queued joins when it is free, or not at all; the task touches nothing rasterization
   // does: it reads state and writes its lane's counters and its chunks); each chunk is
@@ -726,21 +771,36 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
       out.clear();
       const std::size_t last = std::min(triangles, (chunk + 1) * kChunkTriangles);
       for (std::size_t t = chunk * kChunkTriangles; t < last; ++t) {
-        ProcessedVertex v[3];
-        for (std::size_t j = 0; j < 3; ++j) {
-          const std::size_t i = 3 * t + j;
-          ++counted.vertices;
-          v[j] = transform_vertex(batch.positions[i], i < batch.inherited ? start_normal : batch.normals[i], counted);
+        const Scratch::BatchVertex* d[3] = {&vertices[batch.vertices[3 * t]], &vertices[batch.vertices[3 * t + 1]],
+                                            &vertices[batch.vertices[3 * t + 2]]};
+        if (d[0]->simple && d[1]->simple && d[2]->simple) {
+          // What assemble_polygon does with a triangle that is not clipped, from the vertices'
+          // window positions and colours found once.
+          ++counted.primitives_in;
+          AssembledTriangle drawn_triangle{{d[0]->window, d[1]->window, d[2]->window}, Vec4{}, t, TriangleRows{}};
+          const Facing facing = polygon_facing(drawn_triangle.v, 3, counted);
+          if (!facing.drawn) continue;
+          const auto face = static_cast<std::size_t>(facing.face);
+          const bool lit = d[2]->vertex.light_pending;  // the provoking vertex
+          for (int k = 0; k < 3; ++k)
+            if (lit || face == 1) drawn_triangle.v[k].color = lit ? d[k]->lit[face] : d[k]->vertex.color[face];
+          drawn_triangle.flat_color = lit ? d[2]->lit[face] : d[2]->vertex.color[face];
+          drawn_triangle.rows = triangle_rows(drawn_triangle.v[0], drawn_triangle.v[1], drawn_triangle.v[2],
+                                              profile_.limits.subpixel_bits, fb_.config.height);
+          out.push_back(drawn_triangle);
+          continue;
         }
-        const ProcessedVertex* p[3] = {&v[0], &v[1], &v[2]};
+        const ProcessedVertex* p[3] = {&d[0]->vertex, &d[1]->vertex, &d[2]->vertex};
         work.warnings = 0;
-        const bool drawn_here = assemble_polygon(p, 3, v[2], work, counted);
+        const bool drawn_here = assemble_polygon(p, 3, d[2]->vertex, work, counted);
         for (unsigned kind = 0; kind < 2; ++kind)
           if (work.warnings & (1u << kind)) share.first_warned[kind] = std::min(share.first_warned[kind], t);
         if (!drawn_here) continue;
         const std::vector<RasterVertex>& win = work.window;
         for (std::size_t k = 1; k + 1 < win.size(); ++k)
-          out.push_back(AssembledTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
+          out.push_back(AssembledTriangle{
+              {win[0], win[k], win[k + 1]}, work.flat_color, t,
+              triangle_rows(win[0], win[k], win[k + 1], profile_.limits.subpixel_bits, fb_.config.height)});
       }
     }
   });
@@ -775,10 +835,11 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   prim_vertex_count_ += 3 * triangles;
   // The vertices after the last whole triangle wait for the next, as their calls would leave them.
   for (std::size_t i = 3 * triangles; i < count; ++i) {
-    current_.normal = i < batch.inherited ? start_normal : batch.normals[i];
-    submit_vertex(batch.positions[i]);
+    const std::uint32_t v = batch.vertices[i];
+    current_.normal = batch.inherits[v] ? start_normal : batch.normals[v];
+    submit_vertex(batch.positions[v]);
   }
-  if (batch.sets_normal) current_.normal = batch.normals.back();
+  if (batch.sets_normal) current_.normal = batch.last_normal;
 }
 
 // ---------------------------------------------------------------- vertex arrays (§2.8)

@@ -2,7 +2,11 @@
 // them; executing it invokes each through the table, as a replayed trace does.
 #include <fmt/format.h>
 
+#include <array>
+#include <bit>
+#include <cstdint>
 #include <cstring>
+#include <map>
 
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
@@ -42,22 +46,34 @@ void Context::find_triangle_batches(GLuint list) {
     if (calls[i].info != begin || calls[i].args.size() != 1 || calls[i].args[0].i != GL_TRIANGLES) continue;
     TriangleBatch b;
     b.begin_call = i;
-    Vec3 current(0.0);
+    // Distinct by their bits (so −0 and 0, or two NaNs, stay apart when their bits differ).
+    std::map<std::array<std::uint64_t, 8>, std::uint32_t> distinct;
     std::size_t j = i + 1;
     for (; j < calls.size(); ++j) {
       const Call& c = calls[j];
       if (c.info == normal && c.args.size() == 3) {
-        current = Vec3(c.args[0].d, c.args[1].d, c.args[2].d);
+        b.last_normal = Vec3(c.args[0].d, c.args[1].d, c.args[2].d);
         b.sets_normal = true;
       } else if (c.info == vertex && c.args.size() == 4) {
-        if (!b.sets_normal) ++b.inherited;
-        b.positions.push_back(Vec4(c.args[0].d, c.args[1].d, c.args[2].d, c.args[3].d));
-        b.normals.push_back(current);
+        const Vec4 position(c.args[0].d, c.args[1].d, c.args[2].d, c.args[3].d);
+        const Vec3 n = b.sets_normal ? b.last_normal : Vec3(0.0);
+        const std::array<std::uint64_t, 8> key{
+            std::bit_cast<std::uint64_t>(position.x), std::bit_cast<std::uint64_t>(position.y),
+            std::bit_cast<std::uint64_t>(position.z), std::bit_cast<std::uint64_t>(position.w),
+            std::bit_cast<std::uint64_t>(n.x),        std::bit_cast<std::uint64_t>(n.y),
+            std::bit_cast<std::uint64_t>(n.z),        b.sets_normal ? 0u : 1u};
+        const auto [at, added] = distinct.try_emplace(key, static_cast<std::uint32_t>(b.positions.size()));
+        if (added) {
+          b.positions.push_back(position);
+          b.normals.push_back(n);
+          b.inherits.push_back(b.sets_normal ? 0 : 1);
+        }
+        b.vertices.push_back(at->second);
       } else {
         break;
       }
     }
-    if (j < calls.size() && calls[j].info == end && b.positions.size() >= 3 * kMinimumTriangles) {
+    if (j < calls.size() && calls[j].info == end && b.vertices.size() >= 3 * kMinimumTriangles) {
       b.end_call = j;
       batches.push_back(std::move(b));
     }

@@ -40,12 +40,22 @@ struct Context::Scratch {
   // of the assembly in cache-line transfers).
   struct alignas(64) BatchLane {
     PolygonWork work;
-    Counters counters;  // vertices, lighting and texgen evaluations, primitives in, clipped, culled
+    Counters counters;  // primitives in, clipped out, clipped, culled
     // The first of its triangles that raised each PolygonWork warning (kNonFiniteVertex,
     // kNonFiniteWindow), SIZE_MAX for none.
     std::size_t first_warned[2] = {SIZE_MAX, SIZE_MAX};
   };
   std::vector<BatchLane> batch_lanes;
+  // draw_triangle_batch's distinct vertices: transformed; and, when it can be drawn as it is
+  // (simple: finite, trivially inside the clip volume, finite window position), in window
+  // coordinates and lit for each face (lit[face], when lighting).
+  struct BatchVertex {
+    ProcessedVertex vertex;
+    RasterVertex window;
+    std::array<Vec4, 2> lit{};
+    bool simple = false;
+  };
+  std::vector<BatchVertex> batch_vertices;
   // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals.
   struct PixelLane : LaneStages {
     using LaneStages::LaneStages;

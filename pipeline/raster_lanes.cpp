@@ -142,7 +142,7 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
         const AssembledTriangle& triangle = job.run[t];
         options.flat_color = triangle.flat_color;
         rasterize_triangle(triangle.v[0], triangle.v[1], triangle.v[2], options, target, lane.spans,
-                           *lane.stages.first, lane.counters);
+                           *lane.stages.first, lane.counters, &triangle.rows);
       }
     } else if (job.is_point)
       rasterize_point(job.v[0], job.point_size, target, lane.spans, *lane.stages.first, lane.counters);

@@ -26,11 +26,14 @@
 namespace passim {
 
 // A triangle a display-list block assembled (Context::draw_triangle_batch): its window
-// vertices, the colour flat shading gives it, and the block's triangle it comes from.
+// vertices, the colour flat shading gives it, the block's triangle it comes from, and its
+// rows on the window (triangle_rows: found while assembling, on every lane, so that a row
+// group holding none of them passes it over without setting it up).
 struct AssembledTriangle {
   RasterVertex v[3];
   Vec4 flat_color;
   std::size_t source;
+  TriangleRows rows;
 };
 
 class RasterLanes {

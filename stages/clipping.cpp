@@ -1,5 +1,7 @@
 #include "stages/clipping.hpp"
 
+#include <algorithm>
+
 namespace passim {
 namespace {
 
@@ -38,18 +40,17 @@ bool point_inside(const ProcessedVertex& v, const ClipPlanes& planes) {
   return true;
 }
 
+bool trivially_inside(const ProcessedVertex& v, const ClipPlanes& planes) {
+  const Vec4& c = v.clip;
+  return planes.user_enabled == 0 && -c.w <= c.x && c.x <= c.w && -c.w <= c.y && c.y <= c.w && -c.w <= c.z &&
+         c.z <= c.w;
+}
+
 bool clip_polygon(std::vector<ProcessedVertex>& poly, std::vector<ProcessedVertex>& scratch,
                   const ClipPlanes& planes, bool& cut) {
   cut = false;
-  // Trivial accept: every vertex inside the view volume and no user plane enabled.
-  if (planes.user_enabled == 0) {
-    bool inside = true;
-    for (const auto& v : poly) {
-      const Vec4& c = v.clip;
-      inside = inside && -c.w <= c.x && c.x <= c.w && -c.w <= c.y && c.y <= c.w && -c.w <= c.z && c.z <= c.w;
-    }
-    if (inside) return poly.size() >= 3;
-  }
+  if (std::all_of(poly.begin(), poly.end(), [&](const ProcessedVertex& v) { return trivially_inside(v, planes); }))
+    return poly.size() >= 3;
   for (int k = 0; k < 12 && !poly.empty(); ++k) {
     if (!plane_active(k, planes)) continue;
     bool all_inside = true;

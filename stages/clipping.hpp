@@ -16,6 +16,10 @@ struct ClipPlanes {
 // True when the point lies inside every plane (§2.11: points are clipped as a whole).
 bool point_inside(const ProcessedVertex& v, const ClipPlanes& planes);
 
+// The trivial accept: no user plane enabled and the vertex inside the view volume. A polygon
+// whose vertices all pass it is drawn as it is (clip_polygon leaves it untouched, cut false).
+bool trivially_inside(const ProcessedVertex& v, const ClipPlanes& planes);
+
 // Clips the convex polygon `poly` in place (Sutherland-Hodgman, attributes interpolated
 // with the same parameter t as the clip coordinates). `scratch` is reused storage.
 // Returns false when nothing is left; `cut` tells whether any plane cut the polygon.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "pipeline/fixed_point.hpp"
 #include "stages/span_kernels.hpp"
@@ -86,11 +87,29 @@ void texture_coordinates(const Plane tex[4], const PlaneSetup& setup, double cy,
   }
 }
 
+// The pixels, 0 to size − 1, whose centres (2p + 1)·S lie in [lo, hi] (snapped units, S half
+// a pixel).
+std::pair<std::int64_t, std::int64_t> centres_between(std::int64_t lo, std::int64_t hi, std::int64_t S, int size) {
+  return {std::max<std::int64_t>(0, ceil_div(lo - S, 2 * S)), std::min<std::int64_t>(size - 1, floor_div(hi - S, 2 * S))};
+}
+
 }  // namespace
+
+TriangleRows triangle_rows(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, int subpixel_bits,
+                           int window_height) {
+  const std::int64_t Y[3] = {snap_coordinate(a.y, subpixel_bits), snap_coordinate(b.y, subpixel_bits),
+                             snap_coordinate(c.y, subpixel_bits)};
+  const auto [first, last] = centres_between(std::min({Y[0], Y[1], Y[2]}), std::max({Y[0], Y[1], Y[2]}),
+                                             std::int64_t{1} << subpixel_bits, window_height);
+  if (first > last) return TriangleRows{};
+  return TriangleRows{static_cast<std::int32_t>(first), static_cast<std::int32_t>(last)};
+}
 
 void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
-                        FragmentSink& sink, Counters& counters) {
+                        FragmentSink& sink, Counters& counters, const TriangleRows* rows) {
+  if (target.counts_primitives()) ++counters.triangles_rasterized;
+  if (rows && (rows->first > rows->last || !target.owns_any_row(rows->first, rows->last))) return;
   const std::int64_t S = std::int64_t{1} << target.subpixel_bits;  // half a pixel in doubled units
   const std::int64_t pixel = 2 * S;
   const RasterVertex* v[3] = {&a, &b, &c};
@@ -100,7 +119,6 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
     Y[i] = snap_coordinate(v[i]->y, target.subpixel_bits);
   }
   std::int64_t area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-  if (target.counts_primitives()) ++counters.triangles_rasterized;
   if (area == 0) return;  // degenerate after snapping: no pixel centre is strictly inside
   if (area < 0) {         // make the vertex order counter-clockwise (y up)
     std::swap(v[1], v[2]);
@@ -112,12 +130,10 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   // Rows and columns whose centres (2x+1)·S can lie inside the bounding box.
   const std::int64_t min_x = std::min({X[0], X[1], X[2]}), max_x = std::max({X[0], X[1], X[2]});
   const std::int64_t min_y = std::min({Y[0], Y[1], Y[2]}), max_y = std::max({Y[0], Y[1], Y[2]});
-  const std::int64_t col_lo = std::max<std::int64_t>(0, ceil_div(min_x - S, pixel));
-  const std::int64_t col_hi = std::min<std::int64_t>(target.width - 1, floor_div(max_x - S, pixel));
-  const std::int64_t row_lo = std::max<std::int64_t>(0, ceil_div(min_y - S, pixel));
-  const std::int64_t row_hi = std::min<std::int64_t>(target.height - 1, floor_div(max_y - S, pixel));
+  const auto [col_lo, col_hi] = centres_between(min_x, max_x, S, target.width);
+  const auto [row_lo, row_hi] = centres_between(min_y, max_y, S, target.height);
   if (col_lo > col_hi || row_lo > row_hi) return;
-  if (!target.owns_any_row(row_lo, row_hi)) return;  // another raster lane's rows only
+  if (!rows && !target.owns_any_row(row_lo, row_hi)) return;  // another raster lane's rows only
 
   // Edge k runs from vertex k+1 to vertex k+2; E_k(P) = dx·(Py - ay) - dy·(Px - ax) > 0 inside.
   // A5: a centre exactly on an edge is inside when the edge is a left edge (dy < 0) or a

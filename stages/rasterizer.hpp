@@ -92,9 +92,20 @@ struct TriangleOptions {
 // that pixel centres (x + 1/2) are integers too.
 std::int64_t snap_coordinate(double window_coordinate, int subpixel_bits);
 
+// The window rows whose pixel centres a triangle's bounding box (of its snapped vertices)
+// can hold; empty (first > last) when there are none.
+struct TriangleRows {
+  std::int32_t first = 0, last = -1;
+};
+TriangleRows triangle_rows(const RasterVertex& v0, const RasterVertex& v1, const RasterVertex& v2, int subpixel_bits,
+                           int window_height);
+
+// `rows`, when given, is triangle_rows of the same vertices on the same target: a triangle
+// none of whose rows the target owns is then passed over without being set up (raster
+// lanes compute it once per triangle, not once per row group).
 void rasterize_triangle(const RasterVertex& v0, const RasterVertex& v1, const RasterVertex& v2,
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
-                        FragmentSink& sink, Counters& counters);
+                        FragmentSink& sink, Counters& counters, const TriangleRows* rows = nullptr);
 
 // Non-antialiased point of the given size (§3.3.1).
 // Point fragments take the vertex's s/q, t/q, r/q and λ = 0 (ρ = 1).

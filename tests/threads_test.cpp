@@ -117,11 +117,14 @@ TEST(Threads, RandomScenesAreTheSameOnAnyNumberOfThreads) {
 
 TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
   // Context::draw_triangle_batch: a list's glBegin(GL_TRIANGLES) block of glNormal3d and
-  // glVertex4d calls is transformed and assembled on every lane. Lit, culled, clipped (some
-  // vertices far outside the view, some behind the eye), normals inherited from before the
-  // block for its first vertices and then changed every few vertices, two vertices left over
-  // after the last triangle; the state after the list (current normal) and the planes and
-  // counters must be those of one thread, on which the calls run one by one.
+  // glVertex4d calls has its distinct vertices transformed once and its triangles assembled,
+  // on every lane. Lit, culled, clipped (some vertices far outside the view, some behind the
+  // eye), normals inherited from before the block for its first vertices (the current normal
+  // differs between calls of the list) and then changed every few vertices, vertices and
+  // normals drawn from small pools (so that each recurs, in triangles drawn and clipped, with
+  // the same normal and with another, inherited or set), texgen on for some seeds, two
+  // vertices left over after the last triangle; the state after the list (current normal) and
+  // the planes and counters must be those of one thread, on which the calls run one by one.
   const std::uint64_t tasks_before = RasterLanes::tasks_run;
   for (unsigned seed = 1; seed <= 6; ++seed) {
     auto run = [&](int threads) {
@@ -139,16 +142,28 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
       ctx->glEnable(GL_LIGHT0);
       ctx->glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, seed % 2);
       if (seed % 3 == 0) ctx->glEnable(GL_CULL_FACE);
+      if (seed % 2 == 0) {
+        ctx->glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+        ctx->glEnable(GL_TEXTURE_GEN_S);
+      }
       ctx->glNormal3d(0.0, 0.0, 1.0);  // inherited by the block's first vertices
       ctx->glEnable(GL_TEXTURE_2D);     // incomplete: the stage setup warns, at the first triangle drawn
+      std::vector<Vec4> positions(40);
+      for (Vec4& p : positions) p = Vec4(pos(rng), pos(rng), z(rng), 1.0);
+      std::vector<Vec3> normals{{0.0, 0.0, 1.0}, {0.0, 0.0, 1.0}};  // the inherited one, set
+      for (int k = 0; k < 4; ++k) normals.emplace_back(unit(rng), unit(rng), unit(rng));
       auto make_list = [&](int nan_vertex) {
         const GLuint list = ctx->glGenLists(1);
         ctx->glNewList(list, GL_COMPILE);
         ctx->glBegin(GL_TRIANGLES);
         const int vertices = 3 * 150 + 2;
         for (int k = 0; k < vertices; ++k) {
-          if (k >= 4 && rng() % 3 == 0) ctx->glNormal3d(unit(rng), unit(rng), unit(rng));
-          ctx->glVertex4d(k == nan_vertex ? std::nan("") : pos(rng), pos(rng), z(rng), 1.0);
+          if (k >= 4 && rng() % 3 == 0) {
+            const Vec3& n = normals[rng() % normals.size()];
+            ctx->glNormal3d(n.x, n.y, n.z);
+          }
+          const Vec4& p = positions[rng() % positions.size()];
+          ctx->glVertex4d(k == nan_vertex ? std::nan("") : p.x, p.y, p.z, p.w);
         }
         ctx->glEnd();
         ctx->glEndList();
@@ -158,6 +173,7 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
       // triangle for odd seeds, the 101st for even ones.
       const GLuint list = make_list(seed % 2 ? 1 : 301);
       ctx->glCallList(list);
+      ctx->glNormal3d(0.3, -0.5, 0.8);  // the block's first vertices now take this one
       ctx->glCallList(list);
       // Three blocks in one call, under the same state: queued one after the other by
       // reference (two sets of chunks in turn: the third block's must wait for the first's).
