@@ -515,7 +515,7 @@ void Context::glClear(GLbitfield mask) {
   PASSIM_ENTRY(mask)
   const GLbitfield known = GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | GL_ACCUM_BUFFER_BIT;
   if (mask & ~known) return set_error(GL_INVALID_VALUE);
-  clear_buffers(mask, fb_control_, fragment_, draw_buffer_ids_, fb_, counters());
+  clear_buffers(mask, fb_control_, fragment_, draw_buffer_ids_, fb_, counters(), rows_on_lanes());
 }
 
 void Context::glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a) {

@@ -18,6 +18,7 @@
 #include "pipeline/profile.hpp"
 #include "pipeline/state.hpp"
 #include "pipeline/texture.hpp"
+#include "stages/row_splitter.hpp"
 #include "stages/pixel_unpack.hpp"
 #include "stages/fog.hpp"
 #include "stages/pixel_transfer.hpp"
@@ -28,7 +29,6 @@ namespace passim {
 
 struct FragmentStagesSetup;
 struct LaneStages;
-using RowSplitter = std::function<void(int rows, const std::function<void(int first, int end)>& body)>;
 struct SpanBuffers;
 class FragmentSink;
 struct FragmentOpsInput;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -13,7 +14,8 @@ std::int32_t accum_code(double value, int bits) {
 }
 
 void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const FragmentOpsState& ops,
-                   const std::vector<ColorBufferId>& draw_buffers, Framebuffer& fb, Counters& counters) {
+                   const std::vector<ColorBufferId>& draw_buffers, Framebuffer& fb, Counters& counters,
+                   const RowSplitter* split) {
   const FramebufferConfig& cfg = fb.config;
   const PixelBox box = scissored_window(ops, cfg.width, cfg.height);
   const int x0 = box.x0, y0 = box.y0, x1 = box.x1, y1 = box.y1;  // plain ints: lambdas capture them
@@ -21,65 +23,68 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
   ++counters.clears;
   if (pixels == 0) return;
 
-  auto for_each_pixel = [&](auto&& f) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) f(fb.pixel_index(x, y));
-  };
-
-  if (mask & GL_COLOR_BUFFER_BIT) {
-    std::uint16_t code[4];
-    int bits = 0;
-    for (int k = 0; k < 4; ++k) {
-      code[k] = static_cast<std::uint16_t>(float_to_fixed(ctl.clear_color[k], cfg.color_bits[k]));
-      if (ctl.color_mask[k]) bits += cfg.color_bits[k];
-    }
-    const bool all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
-    for (ColorBufferId id : draw_buffers) {
-      std::uint16_t* rgba = fb.color[static_cast<int>(id)].rgba.data();
-      if (all_channels) {
-        // Whole pixels: build one row of the clear pattern, then copy it into every row.
-        const std::size_t row_values = 4 * static_cast<std::size_t>(x1 - x0);
-        std::uint16_t* first = rgba + 4 * fb.pixel_index(x0, y0);
-        for (std::size_t x = 0; x < row_values; x += 4) std::memcpy(first + x, code, sizeof(code));
-        for (int y = y0 + 1; y < y1; ++y)
-          std::memcpy(rgba + 4 * fb.pixel_index(x0, y), first, row_values * sizeof(std::uint16_t));
-      } else {
-        for_each_pixel([&](std::size_t p) {
-          for (int k = 0; k < 4; ++k)
-            if (ctl.color_mask[k] && cfg.color_bits[k] > 0) rgba[4 * p + k] = code[k];
-        });
-      }
-      counters.clear_pixels += pixels;
-      counters.color_bits_written += pixels * static_cast<std::uint64_t>(bits);
-    }
+  // What each plane is cleared to, and what is counted (once, here; the rows below write).
+  const bool color = (mask & GL_COLOR_BUFFER_BIT) != 0;
+  std::uint16_t color_code[4];
+  int color_bits = 0;
+  for (int k = 0; k < 4; ++k) {
+    color_code[k] = static_cast<std::uint16_t>(float_to_fixed(ctl.clear_color[k], cfg.color_bits[k]));
+    if (ctl.color_mask[k]) color_bits += cfg.color_bits[k];
   }
-  if ((mask & GL_DEPTH_BUFFER_BIT) && cfg.depth_bits > 0 && ctl.depth_mask) {
-    const std::uint32_t code = float_to_fixed(ctl.clear_depth, cfg.depth_bits);
-    for (int y = y0; y < y1; ++y) std::fill_n(fb.depth.begin() + static_cast<std::ptrdiff_t>(fb.pixel_index(x0, y)), x1 - x0, code);
+  const bool all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
+  if (color)
+    for (std::size_t b = 0; b < draw_buffers.size(); ++b) {
+      counters.clear_pixels += pixels;
+      counters.color_bits_written += pixels * static_cast<std::uint64_t>(color_bits);
+    }
+  const bool depth = (mask & GL_DEPTH_BUFFER_BIT) && cfg.depth_bits > 0 && ctl.depth_mask;
+  const std::uint32_t depth_code = depth ? float_to_fixed(ctl.clear_depth, cfg.depth_bits) : 0;
+  if (depth) {
     counters.clear_pixels += pixels;
     counters.depth_bits_written += pixels * static_cast<std::uint64_t>(cfg.depth_bits);
   }
-  if ((mask & GL_STENCIL_BUFFER_BIT) && cfg.stencil_bits > 0) {
-    const std::uint32_t smax = max_code(cfg.stencil_bits);
-    const std::uint32_t write = ctl.stencil_writemask & smax;
-    const std::uint32_t value = static_cast<std::uint32_t>(ctl.clear_stencil) & smax;
-    if (write) {
-      for_each_pixel([&](std::size_t p) {
-        fb.stencil[p] = static_cast<std::uint8_t>((fb.stencil[p] & ~write) | (value & write));
-      });
-      counters.clear_pixels += pixels;
-      counters.stencil_bits_written += pixels * static_cast<std::uint64_t>(cfg.stencil_bits);
-    }
+  const std::uint32_t stencil_write =
+      (mask & GL_STENCIL_BUFFER_BIT) && cfg.stencil_bits > 0 ? ctl.stencil_writemask & max_code(cfg.stencil_bits) : 0;
+  const std::uint32_t stencil_value =
+      cfg.stencil_bits > 0 ? static_cast<std::uint32_t>(ctl.clear_stencil) & max_code(cfg.stencil_bits) : 0;
+  if (stencil_write) {
+    counters.clear_pixels += pixels;
+    counters.stencil_bits_written += pixels * static_cast<std::uint64_t>(cfg.stencil_bits);
   }
-  if ((mask & GL_ACCUM_BUFFER_BIT) && cfg.accum_bits > 0) {
-    std::int32_t code[4];
-    for (int k = 0; k < 4; ++k) code[k] = accum_code(ctl.clear_accum[k], cfg.accum_bits);
-    for_each_pixel([&](std::size_t p) {
-      for (int k = 0; k < 4; ++k) fb.accum[4 * p + k] = code[k];
-    });
+  const bool accum = (mask & GL_ACCUM_BUFFER_BIT) && cfg.accum_bits > 0;
+  std::int32_t accum_codes[4] = {};
+  if (accum) {
+    for (int k = 0; k < 4; ++k) accum_codes[k] = accum_code(ctl.clear_accum[k], cfg.accum_bits);
     counters.clear_pixels += pixels;
     counters.accum_bits_written += pixels * 4u * static_cast<std::uint64_t>(cfg.accum_bits);
   }
+
+  // Rows y0 + first to y0 + end − 1 of every plane cleared.
+  const std::function<void(int, int)> clear_rows = [&](int first, int end) {
+    for (int y = y0 + first; y < y0 + end; ++y) {
+      const std::size_t row = fb.pixel_index(x0, y), n = static_cast<std::size_t>(x1 - x0);
+      if (color)
+        for (ColorBufferId id : draw_buffers) {
+          std::uint16_t* rgba = fb.color[static_cast<int>(id)].rgba.data() + 4 * row;
+          if (all_channels) {
+            for (std::size_t x = 0; x < n; ++x) std::memcpy(rgba + 4 * x, color_code, sizeof(color_code));
+          } else {
+            for (std::size_t x = 0; x < n; ++x)
+              for (int k = 0; k < 4; ++k)
+                if (ctl.color_mask[k] && cfg.color_bits[k] > 0) rgba[4 * x + k] = color_code[k];
+          }
+        }
+      if (depth) std::fill_n(fb.depth.begin() + static_cast<std::ptrdiff_t>(row), n, depth_code);
+      if (stencil_write)
+        for (std::size_t x = row; x < row + n; ++x)
+          fb.stencil[x] = static_cast<std::uint8_t>((fb.stencil[x] & ~stencil_write) | (stencil_value & stencil_write));
+      if (accum)
+        for (std::size_t x = row; x < row + n; ++x)
+          for (int k = 0; k < 4; ++k) fb.accum[4 * x + k] = accum_codes[k];
+    }
+  };
+  if (split) (*split)(y1 - y0, clear_rows);
+  else clear_rows(0, y1 - y0);
 }
 
 }  // namespace passim

@@ -9,6 +9,7 @@
 #include "pipeline/counters.hpp"
 #include "pipeline/state.hpp"
 #include "stages/pixel_unpack.hpp"
+#include "stages/row_splitter.hpp"
 
 namespace passim {
 
@@ -33,11 +34,9 @@ struct ConvolutionFilter {
 // order — the results are the same bits (tests/pixel_transfer_kernels_test.cpp).
 // `spare`, when given, is storage the output is built in and the input's storage is
 // handed back in (a caller that convolves often keeps its allocation).
-// `split`, when given, runs the output rows' work as it chooses (on several threads): it
-// must call body(first, end) once for each range of a partition of [0, rows). Every output
-// row is computed alone from the input, so any partition gives the same bits.
+// `split`, when given, runs the output rows' work as it chooses (on several threads; every
+// output row is computed alone from the input).
 enum class ConvolutionKernel { Scalar, Fastest };
-using RowSplitter = std::function<void(int rows, const std::function<void(int first, int end)>& body)>;
 void convolve(std::vector<Rgba>& image, int& width, int& height, const ConvolutionFilter& filter, Counters& counters,
               ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr,
               const RowSplitter* split = nullptr);

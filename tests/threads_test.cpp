@@ -282,6 +282,67 @@ TEST(Threads, PixelCopiesAreTheSameOnAnyNumberOfThreads) {
   EXPECT_GE(RasterLanes::tasks_run - tasks_before, 32u);  // the copies did take the lanes' path
 }
 
+TEST(Threads, ClearsAreTheSameOnAnyNumberOfThreads) {
+  // glClear's rows on the lanes (Context::rows_on_lanes): every plane, under a scissor box or
+  // not, colour, depth and stencil write masks, over a random scene. The cleared values are
+  // the spec's (§2.13.9 conversion, A8 rounding, worked by hand: 0.5, 0.25, 1, 0 at b bits are
+  // 2^(b−1), 2^(b−2), 2^b − 1, 0); what the box or the masks keep is what was there before.
+  const std::uint64_t tasks_before = RasterLanes::tasks_run;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const bool scissor = seed % 2 == 1;
+    const GLboolean green = seed % 3 != 0, depth_mask = seed % 4 != 0;
+    const int bits = 8 + static_cast<int>(seed % 5);  // random_scene_context's colour width
+    std::unique_ptr<Context> before;
+    auto run = [&](int threads) {
+      auto ctx = random_scene_context(seed, threads);
+      if (threads == 1) {  // a copy of what the clear starts from
+        before = random_scene_context(seed, 1);
+      }
+      if (scissor) {
+        ctx->glEnable(GL_SCISSOR_TEST);
+        ctx->glScissor(5, 7, 50, 40);
+      } else {
+        ctx->glDisable(GL_SCISSOR_TEST);
+      }
+      ctx->glColorMask(GL_TRUE, green, GL_TRUE, GL_TRUE);
+      ctx->glDepthMask(depth_mask);
+      ctx->glStencilMask(0x0F);
+      ctx->glClearColor(0.5f, 0.25f, 1.0f, 0.0f);
+      ctx->glClearDepth(0.5);
+      ctx->glClearStencil(0xA5);
+      ctx->glClearAccum(0.5f, -0.5f, 0.0f, 1.0f);
+      ctx->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | GL_ACCUM_BUFFER_BIT);
+      return ctx;
+    };
+    const auto one = run(1);
+    for (int threads : {2, 3}) {
+      const auto many = run(threads);
+      const Framebuffer &a = one->framebuffer(), &b = many->framebuffer();
+      ASSERT_EQ(a.color[0].rgba, b.color[0].rgba) << seed << " " << threads;
+      ASSERT_EQ(a.depth, b.depth) << seed << " " << threads;
+      ASSERT_EQ(a.stencil, b.stencil) << seed << " " << threads;
+      ASSERT_EQ(a.accum, b.accum) << seed << " " << threads;
+      ASSERT_TRUE(one->total_counters() == many->total_counters()) << seed << " " << threads;
+      EXPECT_EQ(many->glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << seed;
+    }
+    const Framebuffer &fb = one->framebuffer(), &old = before->framebuffer();
+    const std::uint32_t expected[4] = {1u << (bits - 1), 1u << (bits - 2), (1u << bits) - 1, 0};
+    for (int y = 0; y < 56; ++y)
+      for (int x = 0; x < 72; ++x) {
+        const bool inside = !scissor || (x >= 5 && x < 55 && y >= 7 && y < 47);
+        const std::size_t p = fb.pixel_index(x, y);
+        for (int k = 0; k < 4; ++k) {
+          const bool written = inside && (k != 1 || green);
+          ASSERT_EQ(fb.color[0].rgba[4 * p + k], written ? expected[k] : old.color[0].rgba[4 * p + k])
+              << seed << " " << x << "," << y << " " << k;
+        }
+        ASSERT_EQ(fb.depth[p], inside && depth_mask ? (1u << 23) : old.depth[p]) << seed;  // round(0.5·(2^24 − 1))
+        ASSERT_EQ(fb.stencil[p], inside ? ((old.stencil[p] & 0xF0) | 0x05) : old.stencil[p]) << seed;
+      }
+  }
+  EXPECT_GE(RasterLanes::tasks_run - tasks_before, 6u);  // the clears did take the lanes' path
+}
+
 TEST(Threads, TextureCopiesAreTheSameOnAnyNumberOfThreads) {
   // Copies to colour textures in bands on the lanes (Context::copy_color_texels): random
   // scenes copied through scale and bias, a colour table and the colour matrix into textures
