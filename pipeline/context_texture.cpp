@@ -837,6 +837,8 @@ FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
   options.lod_height = dims == 2 ? base.height - 2 * base.border : 1;
   options.min_lod = tex.min_lod;
   options.max_lod = tex.max_lod;
+  // The texture stage reads t only for a 2D texture and r only for a depth comparison.
+  options.texcoords_used = (tex.compare_sgix || tex.compare_mode == GL_COMPARE_R_TO_TEXTURE) ? 3 : dims;
   setup.texture = true;
   setup.texture_setup = TextureStageSetup{
       &tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_, profile_.arithmetic.texture_filter_8_8};

@@ -66,7 +66,7 @@ void texture_coordinates(const Plane tex[4], const PlaneSetup& setup, double cy,
                          const TriangleOptions& o, FragmentSpan& span) {
   SpanPlane stq[4];
   for (int k = 0; k < 4; ++k) stq[k] = SpanPlane{tex[k].at_row(cy, setup.y0), tex[k].dfdx};
-  texture_coordinates(stq, x0, setup.x0, n, span.s, span.t, span.r);
+  texture_coordinates(stq, x0, setup.x0, n, o.texcoords_used, span.s, span.t, span.r);
   if (!o.lod) {
     std::fill(span.lambda, span.lambda + n, 0.0);
     return;

@@ -82,6 +82,7 @@ struct TriangleOptions {
   bool offset = false;
   double offset_factor = 0.0, offset_units = 0.0;
   bool texcoords = false;  // interpolate s/q, t/q, r/q (eq. 3.4 with α = q)
+  int texcoords_used = 3;  // of s/q, t/q, r/q the first this many, those the texture stage reads (the others 0)
   bool lod = false;        // also compute λ (§3.8.5, eq. 3.15) for a base level of lod_width x lod_height
   double lod_width = 1.0, lod_height = 1.0;
   double min_lod = -1000.0, max_lod = 1000.0;

@@ -37,21 +37,20 @@ void color_codes_scalar(const SpanPlane& q, const SpanPlane c[4], const double s
   }
 }
 
-void texture_coordinates_scalar(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t,
+void texture_coordinates_scalar(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
                                 double* r) {
+  double* out[3] = {s, t, r};
   for (int i = 0; i < n; ++i) {
     const double dx = centre_offset(x0 + i, x_ref);
     const double q = stq[3].row + stq[3].d_dx * dx;
-    s[i] = (stq[0].row + stq[0].d_dx * dx) / q;
-    t[i] = (stq[1].row + stq[1].d_dx * dx) / q;
-    r[i] = (stq[2].row + stq[2].d_dx * dx) / q;
+    for (int k = 0; k < 3; ++k) out[k][i] = k < used ? (stq[k].row + stq[k].d_dx * dx) / q : 0.0;
   }
 }
 
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
 namespace {
 __attribute__((target("avx2"))) void texture_coordinates_avx2(const SpanPlane stq[4], int x0, double x_ref, int n,
-                                                              double* s, double* t, double* r) {
+                                                              int used, double* s, double* t, double* r) {
   const __m256d half = _mm256_set1_pd(0.5), ref = _mm256_set1_pd(x_ref);
   __m256d row[4], d[4];
   for (int k = 0; k < 4; ++k) {
@@ -65,16 +64,18 @@ __attribute__((target("avx2"))) void texture_coordinates_avx2(const SpanPlane st
     const __m256d dx = _mm256_sub_pd(_mm256_add_pd(xs, half), ref);
     const __m256d q = _mm256_add_pd(row[3], _mm256_mul_pd(d[3], dx));
     for (int k = 0; k < 3; ++k)
-      _mm256_storeu_pd(out[k] + i, _mm256_div_pd(_mm256_add_pd(row[k], _mm256_mul_pd(d[k], dx)), q));
+      _mm256_storeu_pd(out[k] + i, k < used ? _mm256_div_pd(_mm256_add_pd(row[k], _mm256_mul_pd(d[k], dx)), q)
+                                            : _mm256_setzero_pd());
   }
-  texture_coordinates_scalar(stq, x0 + i, x_ref, n - i, s + i, t + i, r + i);
+  texture_coordinates_scalar(stq, x0 + i, x_ref, n - i, used, s + i, t + i, r + i);
 }
 }  // namespace
 
-void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r) {
+void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
+                         double* r) {
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return texture_coordinates_avx2(stq, x0, x_ref, n, s, t, r);
-  texture_coordinates_scalar(stq, x0, x_ref, n, s, t, r);
+  if (avx2) return texture_coordinates_avx2(stq, x0, x_ref, n, used, s, t, r);
+  texture_coordinates_scalar(stq, x0, x_ref, n, used, s, t, r);
 }
 
 namespace {
@@ -159,8 +160,9 @@ void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double s
   color_codes_avx2(q, c, scale, x0, x_ref, n, out, true);
 }
 #else
-void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r) {
-  texture_coordinates_scalar(stq, x0, x_ref, n, s, t, r);
+void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
+                         double* r) {
+  texture_coordinates_scalar(stq, x0, x_ref, n, used, s, t, r);
 }
 void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
                         std::uint32_t* out) {

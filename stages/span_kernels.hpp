@@ -26,9 +26,12 @@ void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4]
 
 // Projective texture coordinates (eq. 3.4 with the planes of s/w, t/w, r/w, q/w):
 // s(i) = (s.row + s.d_dx·dx_i) / (q.row + q.d_dx·dx_i), likewise t and r; plane k of `stq` is
-// s, t, r, q. The AVX2 kernel, when the processor has it, divides four fragments at a time.
-void texture_coordinates_scalar(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r);
-void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, double* s, double* t, double* r);
+// s, t, r, q. Only the first `used` of s, t, r (1 to 3) are computed, those the texture
+// stage reads; the others are written 0. The AVX2 kernel, when the processor has it, divides four fragments at a time.
+void texture_coordinates_scalar(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
+                                double* r);
+void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
+                         double* r);
 
 // The same for a caller whose buffers have room for n rounded up to a multiple of 4
 // (out[n .. n+3] may be written with values of the pixels past the span): no scalar tail.
