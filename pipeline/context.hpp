@@ -474,8 +474,10 @@ class Context {
   RasterVertex to_window(const ProcessedVertex& v, int face) const;
   // Texturing.
   TextureObject* texture_for(GLenum target);
+  // `overwritten`: the caller stores every texel of the level next (a copy), so its storage
+  // is sized but not cleared.
   void tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
-                 GLint border, GLenum format, GLenum type, const void* pixels);
+                 GLint border, GLenum format, GLenum type, const void* pixels, bool overwritten = false);
   void tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
                      GLsizei height, GLenum format, GLenum type, const void* pixels);
   void copy_tex_image(GLenum target, int dims, GLint level, GLenum internalformat, GLint x, GLint y, GLsizei width,

@@ -207,7 +207,7 @@ void Context::copy_color_texels(int dims, int x, int y, int width, int height, T
 }
 
 void Context::tex_image(GLenum target, int dims, GLint level, GLint internalformat, GLsizei width, GLsizei height,
-                        GLint border, GLenum format, GLenum type, const void* pixels) {
+                        GLint border, GLenum format, GLenum type, const void* pixels, bool overwritten) {
   const GLenum want = dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D;
   if (target != want) return set_error(GL_INVALID_ENUM);
   const int max = profile_.limits.max_texture_size;
@@ -234,7 +234,9 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   l.height = dims == 2 ? height : 1;
   l.border = border;
   l.format = *fmt_info;
-  l.texels.assign(4 * static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height), 0);
+  const std::size_t values = 4 * static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height);
+  if (overwritten) l.texels.resize(values);
+  else l.texels.assign(values, 0);
   l.texels_changed();
   if (!pixels) return;  // §3.8.1: a NULL image defines the level with unspecified contents (zeros here)
   std::vector<Rgba> rgba;
@@ -492,8 +494,12 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   if (f && internalformat >= 1 && internalformat <= 4) return set_error(GL_INVALID_VALUE);
   if (f && f->base == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   const std::size_t errors = error_log_.size();
+  // A colour copy stores every texel unless a histogram or minmax sink consumes the pixels
+  // or a convolution changes the size (then the level starts from zeros).
+  const bool overwritten = !(f && f->base == GL_DEPTH_COMPONENT) && !active_convolution(transfer_, dims) &&
+                           !transfer_.histogram.enabled && !transfer_.minmax.enabled;
   tex_image(target, dims, level, static_cast<GLint>(internalformat), width, height, border,
-            f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
+            f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr, overwritten);
   if (error_log_.size() != errors) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.

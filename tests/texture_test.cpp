@@ -316,6 +316,36 @@ TEST(Texture, CopyTexImageFromTheFramebufferAndDepthPlane) {
   EXPECT_EQ(d[3], 16384u);  // 4194304/16777215·65535 = 16383.75 -> 16384
 }
 
+TEST(Texture, CopyTexImageReplacesEveryTexelOfALevelThatHeldOthers) {
+  // glCopyTexImage2D redefines the level: whatever it held before is gone. A 4x32 level of
+  // 200s is replaced by a copy of a 4x32 rectangle partly outside the 4x20 window of 100s:
+  // the pixels inside give 100, those outside 0 (passim reads pixels outside the window as
+  // 0, docs/arithmetic.md). On one thread and on two (where the copy runs in bands of 16 rows
+  // on the lanes), and under a histogram sink, which consumes the pixels: the level is then 0.
+  for (int threads : {1, 2}) {
+    for (bool sink : {false, true}) {
+      Context ctx(test::small_config(4, 20, 8));
+      ctx.set_threads(threads);
+      std::vector<GLubyte> old(4 * 4 * 32, 200);
+      ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 4, 32, 0, GL_RGBA, GL_UNSIGNED_BYTE, old.data());
+      ctx.glClearColor(100.0f / 255.0f, 100.0f / 255.0f, 100.0f / 255.0f, 100.0f / 255.0f);
+      ctx.glClear(GL_COLOR_BUFFER_BIT);
+      if (sink) {
+        ctx.glHistogram(GL_HISTOGRAM, 16, GL_RGBA, GL_TRUE);
+        ctx.glEnable(GL_HISTOGRAM);
+      }
+      ctx.glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 0, 0, 4, 32, 0);
+      ASSERT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+      GLubyte texels[4 * 4 * 32];
+      ctx.glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+      for (int i = 0; i < 4 * 4 * 32; ++i) {
+        const bool inside = i < 4 * 4 * 20;  // rows 0 to 19
+        EXPECT_EQ(texels[i], sink ? 0u : (inside ? 100u : 0u)) << threads << " " << sink << " " << i;
+      }
+    }
+  }
+}
+
 TEST(Texture, ErrorsAndIncompleteTextures) {
   Context ctx(test::small_config(1, 1));
   test::window_projection(ctx);
