@@ -441,9 +441,9 @@ class Context {
   void compile_array_element(int i, std::vector<Call>& out) const;
   void execute_list(GLuint list);
   // A glBegin(GL_TRIANGLES) ... glEnd block of a display list holding only glNormal3d and
-  // glVertex4d calls (what a compiled DrawArrays of vertex and normal arrays holds): with
-  // raster lanes, its distinct vertices are transformed once each and its triangles
-  // assembled, on every lane (draw_triangle_batch), then queued in order: the same
+  // glVertex4d calls (what a compiled DrawArrays of vertex and normal arrays holds): its
+  // distinct vertices are transformed once each and its triangles assembled, on every raster
+  // lane when there are lanes (draw_triangle_batch), then queued or drawn in order: the same
   // primitives, bits and counters as its calls one by one (vertex processing reads state
   // only, so equal inputs give equal vertices).
   struct TriangleBatch {

@@ -705,13 +705,15 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   // Its glBegin has run. The batch is drawn as its calls would draw it, one by one, unless
   // it began separate triangles with every polygon filled (points and lines are drawn by
   // draw_polygon alone).
-  if (!scratch_->lanes || !in_begin_ || begin_mode_ != GL_TRIANGLES || !prim_vertices_.empty() ||
-      polygon_.mode_front != GL_FILL || polygon_.mode_back != GL_FILL) {
+  if (!in_begin_ || begin_mode_ != GL_TRIANGLES || !prim_vertices_.empty() || polygon_.mode_front != GL_FILL ||
+      polygon_.mode_back != GL_FILL) {
     for (std::size_t k = batch.begin_call + 1; k < batch.end_call; ++k) calls[k].info->invoke(*this, calls[k].args);
     return;
   }
   Counters& pass = counters();
-  RasterLanes& lanes = *scratch_->lanes;
+  // The tasks below run on every lane that takes part, or on this thread alone.
+  RasterLanes* lanes = scratch_->lanes.get();
+  const auto run_task = [&](const std::function<void(int)>& task) { lanes ? lanes->run_task(task) : task(0); };
   prepare_vertex_processing();
   const Vec3 start_normal = current_.normal;
   const std::size_t count = batch.vertices.size(), triangles = count / 3;
@@ -725,7 +727,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   const ClipPlanes planes = clip_planes_of(transform_);
   const int faces = lighting_.enabled && lighting_.two_side ? 2 : 1;
   std::atomic<std::size_t> next_vertex{0};
-  lanes.run_task([&](int) {
+  run_task([&](int) {
     constexpr std::size_t kChunkVertices = 64;
     for (std::size_t first = next_vertex.fetch_add(kChunkVertices); first < distinct;
          first = next_vertex.fetch_add(kChunkVertices)) {
@@ -753,16 +755,16 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   // The chunks' storage: the set the raster queue may still refer to is run first.
   const int set = scratch_->next_chunk_set;
   scratch_->next_chunk_set = 1 - set;
-  if (lanes.pending() && scratch_->chunk_set_queue[set] == lanes.queue_serial()) lanes.flush(pass);
+  if (lanes && lanes->pending() && scratch_->chunk_set_queue[set] == lanes->queue_serial()) lanes->flush(pass);
   std::vector<Scratch::BatchChunk>& drawn = scratch_->batch_chunks[set];
-  works.resize(static_cast<std::size_t>(lanes.lanes()));
+  works.resize(lanes ? static_cast<std::size_t>(lanes->lanes()) : 1);
   if (drawn.size() < chunks) drawn.resize(chunks);
   for (Scratch::BatchLane& share : works) {  // a lane that takes no part adds nothing
     share.counters = Counters{};
     share.first_warned[0] = share.first_warned[1] = SIZE_MAX;
   }
   std::atomic<std::size_t> next_chunk{0};
-  lanes.run_task([&](int lane) {
+  run_task([&](int lane) {
     Scratch::BatchLane& share = works[static_cast<std::size_t>(lane)];
     PolygonWork& work = share.work;
     Counters& counted = share.counters;
@@ -824,13 +826,21 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     if (what == 2) setup = &primitive_stages_setup(setup_options);
     else note_polygon_warnings(what == 0 ? PolygonWork::kNonFiniteVertex : PolygonWork::kNonFiniteWindow);
   }
-  if (setup) {
+  if (setup && lanes) {
     raster_queued_ = true;
     // By reference (each triangle's options are these but for its flat colour).
     const TriangleOptions options = polygon_options(setup_options, Vec4{});
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-      lanes.triangles(drawn[chunk].triangles.data(), drawn[chunk].triangles.size(), options, *setup, pass);
-    scratch_->chunk_set_queue[set] = lanes.queue_serial();
+      lanes->triangles(drawn[chunk].triangles.data(), drawn[chunk].triangles.size(), options, *setup, pass);
+    scratch_->chunk_set_queue[set] = lanes->queue_serial();
+  } else if (setup) {
+    TriangleOptions options = polygon_options(setup_options, Vec4{});
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+      for (const AssembledTriangle& triangle : drawn[chunk].triangles) {
+        options.flat_color = triangle.flat_color;
+        rasterize_triangle(triangle.v[0], triangle.v[1], triangle.v[2], options, setup->target, scratch_->spans,
+                           fragment_sink(), pass, &triangle.rows);
+      }
   }
   prim_vertex_count_ += 3 * triangles;
   // The vertices after the last whole triangle wait for the next, as their calls would leave them.

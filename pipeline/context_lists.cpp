@@ -38,7 +38,7 @@ void Context::find_triangle_batches(GLuint list) {
   static const CallInfo* const end = find_call("glEnd");
   static const CallInfo* const vertex = find_call("glVertex4d");
   static const CallInfo* const normal = find_call("glNormal3d");
-  // Smaller blocks are not worth waking the lanes for.
+  // Smaller blocks are drawn call by call (not worth a task on the lanes).
   constexpr std::size_t kMinimumTriangles = 64;
   std::vector<TriangleBatch> batches;
   const std::vector<Call>& calls = lists_[list];
@@ -91,7 +91,7 @@ void Context::execute_list(GLuint list) {
   ++list_nesting_;
   // Copy-free: a list cannot be redefined while it runs (NewList is not compiled).
   const std::vector<Call>& calls = it->second;
-  const auto batches = scratch_->lanes ? list_batches_.find(list) : list_batches_.end();
+  const auto batches = list_batches_.find(list);
   if (batches == list_batches_.end()) {
     for (const Call& call : calls) call.info->invoke(*this, call.args);
   } else {

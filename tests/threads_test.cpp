@@ -123,11 +123,12 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
   // differs between calls of the list) and then changed every few vertices, vertices and
   // normals drawn from small pools (so that each recurs, in triangles drawn and clipped, with
   // the same normal and with another, inherited or set), texgen on for some seeds, two
-  // vertices left over after the last triangle; the state after the list (current normal) and
-  // the planes and counters must be those of one thread, on which the calls run one by one.
+  // vertices left over after the last triangle; the state after the lists (current normal),
+  // the planes, the counters and the warnings must be those of the same calls made one by one
+  // outside a list (immediate mode, one thread), on one thread and on several.
   const std::uint64_t tasks_before = RasterLanes::tasks_run;
   for (unsigned seed = 1; seed <= 6; ++seed) {
-    auto run = [&](int threads) {
+    auto run = [&](int threads, bool immediate) {
       auto ctx = std::make_unique<Context>(test::small_config(64, 48, 12));
       ctx->set_threads(threads);
       std::mt19937 rng(seed);
@@ -152,44 +153,58 @@ TEST(Threads, DisplayListTriangleBlocksAreTheSameOnAnyNumberOfThreads) {
       for (Vec4& p : positions) p = Vec4(pos(rng), pos(rng), z(rng), 1.0);
       std::vector<Vec3> normals{{0.0, 0.0, 1.0}, {0.0, 0.0, 1.0}};  // the inherited one, set
       for (int k = 0; k < 4; ++k) normals.emplace_back(unit(rng), unit(rng), unit(rng));
-      auto make_list = [&](int nan_vertex) {
-        const GLuint list = ctx->glGenLists(1);
-        ctx->glNewList(list, GL_COMPILE);
-        ctx->glBegin(GL_TRIANGLES);
+      // A block: its glNormal3d (w = 0 marks them) and glVertex4d calls.
+      auto make_block = [&](int nan_vertex) {
+        std::vector<Vec4> block;
         const int vertices = 3 * 150 + 2;
         for (int k = 0; k < vertices; ++k) {
-          if (k >= 4 && rng() % 3 == 0) {
-            const Vec3& n = normals[rng() % normals.size()];
-            ctx->glNormal3d(n.x, n.y, n.z);
-          }
+          if (k >= 4 && rng() % 3 == 0) block.push_back(Vec4(normals[rng() % normals.size()], 0.0));
           const Vec4& p = positions[rng() % positions.size()];
-          ctx->glVertex4d(k == nan_vertex ? std::nan("") : p.x, p.y, p.z, p.w);
+          block.push_back(Vec4(k == nan_vertex ? std::nan("") : p.x, p.y, p.z, p.w));
         }
+        return block;
+      };
+      auto draw = [&](const std::vector<Vec4>& block) {
+        ctx->glBegin(GL_TRIANGLES);
+        for (const Vec4& c : block) c.w == 0.0 ? ctx->glNormal3d(c.x, c.y, c.z) : ctx->glVertex4d(c.x, c.y, c.z, c.w);
         ctx->glEnd();
+      };
+      auto compile = [&](const std::vector<Vec4>& block) {
+        const GLuint list = ctx->glGenLists(1);
+        ctx->glNewList(list, GL_COMPILE);
+        draw(block);
         ctx->glEndList();
         return list;
       };
       // A vertex with a NaN coordinate (a warning where its triangle is met): in the first
       // triangle for odd seeds, the 101st for even ones.
-      const GLuint list = make_list(seed % 2 ? 1 : 301);
+      const std::vector<Vec4> first = make_block(seed % 2 ? 1 : 301);
+      const std::vector<Vec4> others[2] = {make_block(-1), make_block(-1)};
+      if (immediate) {
+        draw(first);
+        ctx->glNormal3d(0.3, -0.5, 0.8);
+        for (const auto* block : {&first, &first, &others[0], &others[1]}) draw(*block);
+        return ctx;
+      }
+      const GLuint list = compile(first);
       ctx->glCallList(list);
       ctx->glNormal3d(0.3, -0.5, 0.8);  // the block's first vertices now take this one
       ctx->glCallList(list);
       // Three blocks in one call, under the same state: queued one after the other by
       // reference (two sets of chunks in turn: the third block's must wait for the first's).
-      const GLuint others[2] = {make_list(-1), make_list(-1)};
+      const GLuint inner[2] = {compile(others[0]), compile(others[1])};
       const GLuint outer = ctx->glGenLists(1);
       ctx->glNewList(outer, GL_COMPILE);
       ctx->glCallList(list);
-      ctx->glCallList(others[0]);
-      ctx->glCallList(others[1]);
+      ctx->glCallList(inner[0]);
+      ctx->glCallList(inner[1]);
       ctx->glEndList();
       ctx->glCallList(outer);
       return ctx;
     };
-    const auto one = run(1);
-    for (int threads : {2, 3}) {
-      const auto many = run(threads);
+    const auto one = run(1, true);
+    for (int threads : {1, 2, 3}) {
+      const auto many = run(threads, false);
       ASSERT_EQ(one->framebuffer().color[0].rgba, many->framebuffer().color[0].rgba) << seed << " " << threads;
       ASSERT_EQ(one->framebuffer().depth, many->framebuffer().depth) << seed << " " << threads;
       ASSERT_TRUE(one->total_counters() == many->total_counters()) << seed << " " << threads;
