@@ -31,7 +31,14 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
     color_code[k] = static_cast<std::uint16_t>(float_to_fixed(ctl.clear_color[k], cfg.color_bits[k]));
     if (ctl.color_mask[k]) color_bits += cfg.color_bits[k];
   }
-  const bool all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
+  // A pixel's four codes as one 64-bit word: the cleared channels from `pattern`, the others
+  // (masked, or without bits) kept.
+  std::uint16_t kept_channels[4];
+  for (int k = 0; k < 4; ++k) kept_channels[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0 ? 0 : 0xFFFF;
+  std::uint64_t pattern = 0, keep = 0;
+  std::memcpy(&pattern, color_code, sizeof pattern);
+  std::memcpy(&keep, kept_channels, sizeof keep);
+  pattern &= ~keep;
   if (color)
     for (std::size_t b = 0; b < draw_buffers.size(); ++b) {
       counters.clear_pixels += pixels;
@@ -66,12 +73,13 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
       if (color)
         for (ColorBufferId id : draw_buffers) {
           std::uint16_t* rgba = fb.color[static_cast<int>(id)].rgba.data() + 4 * row;
-          if (all_channels) {
-            for (std::size_t x = 0; x < n; ++x) std::memcpy(rgba + 4 * x, color_code, sizeof(color_code));
-          } else {
-            for (std::size_t x = 0; x < n; ++x)
-              for (int k = 0; k < 4; ++k)
-                if (ctl.color_mask[k] && cfg.color_bits[k] > 0) rgba[4 * x + k] = color_code[k];
+          for (std::size_t x = 0; x < n; ++x) {
+            std::uint64_t codes = pattern;
+            if (keep) {
+              std::memcpy(&codes, rgba + 4 * x, sizeof codes);
+              codes = (codes & keep) | pattern;
+            }
+            std::memcpy(rgba + 4 * x, &codes, sizeof codes);
           }
         }
       if (depth) std::fill_n(fb.depth.begin() + static_cast<std::ptrdiff_t>(row), n, depth_code);
