@@ -31,19 +31,18 @@ void clear_buffers(GLbitfield mask, const FramebufferControlState& ctl, const Fr
     color_code[k] = static_cast<std::uint16_t>(float_to_fixed(ctl.clear_color[k], cfg.color_bits[k]));
     if (ctl.color_mask[k]) color_bits += cfg.color_bits[k];
   }
-  // A pixel's four codes as one 64-bit word: the cleared channels from `pattern`, the others
-  // (masked, or without bits) kept.
+  // A pixel's four codes as one 64-bit word: the channels the colour mask opens from
+  // `pattern` (a channel without bits gets its only code, 0), the others kept.
   std::uint16_t kept_channels[4];
-  for (int k = 0; k < 4; ++k) kept_channels[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0 ? 0 : 0xFFFF;
+  for (int k = 0; k < 4; ++k) kept_channels[k] = ctl.color_mask[k] ? 0 : 0xFFFF;
   std::uint64_t pattern = 0, keep = 0;
   std::memcpy(&pattern, color_code, sizeof pattern);
   std::memcpy(&keep, kept_channels, sizeof keep);
   pattern &= ~keep;
-  if (color)
-    for (std::size_t b = 0; b < draw_buffers.size(); ++b) {
-      counters.clear_pixels += pixels;
-      counters.color_bits_written += pixels * static_cast<std::uint64_t>(color_bits);
-    }
+  if (color) {  // for each draw buffer
+    counters.clear_pixels += pixels * draw_buffers.size();
+    counters.color_bits_written += pixels * draw_buffers.size() * static_cast<std::uint64_t>(color_bits);
+  }
   const bool depth = (mask & GL_DEPTH_BUFFER_BIT) && cfg.depth_bits > 0 && ctl.depth_mask;
   const std::uint32_t depth_code = depth ? float_to_fixed(ctl.clear_depth, cfg.depth_bits) : 0;
   if (depth) {
