@@ -514,8 +514,22 @@ class Context {
     const std::uint16_t* first = nullptr;        // codes of pixel (i_lo, j_lo), 4 per pixel
     std::size_t stride = 0;                      // codes from one row to the next (rows bottom first)
     const double* values[4] = {};                // code -> value per channel; nullptr: no bits (1)
+    int bits[4] = {0, 0, 0, 0};                  // the read buffer's channel widths
     void to_reals(int first_row, int rows, Rgba* out) const;
+    // A table of per-code results (entry i: 4 values, for a pixel whose component k has code
+    // min(i, 2^bits_k − 1); then one entry for a pixel outside the window): the reals such a
+    // table is made from (transfer_table), and its entries looked up per pixel, component k
+    // of the output from the entry of the pixel's own component k. Row j of the rows goes to
+    // out + (j − first_row)·out_stride, 4 values a pixel.
+    std::size_t table_entries() const;
+    std::vector<Rgba> table_reals() const;
+    template <class Code>
+    void through_table(int first_row, int rows, const Code* table, Code* out, std::size_t out_stride) const;
   };
+  // transfer_per_component's steps for every code of `source` (SourceCodes::table_reals),
+  // counting nothing; or an empty vector when the transfer is not per component or the
+  // table would hold more entries than `pixels`, the pixels it is for.
+  std::vector<Rgba> transfer_table(const SourceCodes& source, int dims, std::uint64_t pixels);
   // `copy`: the codes are copied there (A22: a copy that draws reads its whole source first);
   // null: they are read in place, and the read buffer must not change while they are used.
   SourceCodes read_framebuffer_codes(int x, int y, int width, int height, std::vector<std::uint16_t>* copy) const;
@@ -572,12 +586,21 @@ class Context {
   // holds those rows' values (width per row). `raster` comes from prepare_rectangle_fragments,
   // called once per rectangle (it configures the fragment stages).
   RasterFragments prepare_rectangle_fragments();
+  // `codes`, in place of `rgba`: the rows' colours as fragment codes already, 4 a pixel.
   void draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width, int first_row,
-                       int rows, const Rgba* rgba, const double* depth);
+                       int rows, const Rgba* rgba, const double* depth, const std::uint16_t* codes = nullptr);
   // draw_pixel_rows into the given stages, counters and span buffers (a lane's).
   void draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width, int first_row,
-                       int rows, const Rgba* rgba, const double* depth, FragmentSink& sink, Counters& counters,
-                       SpanBuffers& spans) const;
+                       int rows, const Rgba* rgba, const double* depth, const std::uint16_t* codes,
+                       FragmentSink& sink, Counters& counters, SpanBuffers& spans) const;
+  // glCopyPixels's colour source drawn through a transfer_table: each pixel's fragment codes
+  // looked up, band by band (on the raster lanes when there are any).
+  void copy_pixels_through_table(const SourceCodes& source, const RectanglePlacement& placement, int width,
+                                 int height, const std::vector<Rgba>& table_reals);
+  // Whether glCopyPixels must copy its source before drawing (A22): unless the read buffer is
+  // not drawn, or no source row's window rows hold another source row, drawing a band could
+  // change rows a later (or another lane's) band has yet to read.
+  bool copy_source_needed(const RectanglePlacement& placement, int y, int height) const;
   // glCopyPixels's bands of rows (no convolution, histogram or minmax), converted,
   // transferred and drawn on every raster lane: the same pixels and counters.
   void copy_bands_on_lanes(const SourceCodes& source, const RectanglePlacement& placement, int width, int height,
@@ -594,6 +617,11 @@ class Context {
   // lanes' stages connected to `setup` first when given; their counters added to the pass.
   // For transfers without a convolution, histogram or minmax (per pixel, no order).
   using TransferredBandUse = std::function<void(LaneStages& lane, const Rgba* band, int first_row, int rows)>;
+  // The lanes' own stages (connected to `setup` when given) and counters (added to the pass's
+  // after), scratch_->pixel_lanes, for body(lane, first, end) over bands of rows as
+  // bands_on_lanes runs them.
+  void bands_on_pixel_lanes(int height, int band_rows, const FragmentStagesSetup* setup,
+                            const std::function<void(int lane, int first, int end)>& body);
   void transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
                                const FragmentStagesSetup* setup, const TransferredBandUse& use);
   // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the

@@ -288,28 +288,32 @@ Context::RasterFragments Context::prepare_rectangle_fragments() {
 }
 
 void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width,
-                              int first_row, int rows, const Rgba* rgba, const double* depth) {
-  draw_pixel_rows(raster, placement, width, first_row, rows, rgba, depth, fragment_sink(), counters(), scratch_->spans);
+                              int first_row, int rows, const Rgba* rgba, const double* depth,
+                              const std::uint16_t* codes) {
+  draw_pixel_rows(raster, placement, width, first_row, rows, rgba, depth, codes, fragment_sink(), counters(),
+                  scratch_->spans);
 }
 
 void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlacement& placement, int width,
-                              int first_row, int rows, const Rgba* rgba, const double* depth, FragmentSink& sink,
-                              Counters& c, SpanBuffers& buf) const {
+                              int first_row, int rows, const Rgba* rgba, const double* depth,
+                              const std::uint16_t* codes, FragmentSink& sink, Counters& c, SpanBuffers& buf) const {
   const std::vector<int>& source_column = placement.source_column;
   const int count = static_cast<int>(source_column.size());
   if (count == 0) return;
+  const bool colour = rgba || codes;
   // Final conversion (§3.6.4): clamp to [0, 1], then to fixed point — once per source row.
   double color_max[4];
   for (int k = 0; k < 4; ++k) color_max[k] = static_cast<double>(max_code(fragment_bits_[k]));
-  std::vector<std::uint16_t> row_codes(rgba ? 4 * static_cast<std::size_t>(width) : 0);
-  std::vector<std::uint32_t> row_depth(rgba ? 0 : static_cast<std::size_t>(width));
+  std::vector<std::uint16_t> converted(rgba ? 4 * static_cast<std::size_t>(width) : 0);
+  std::vector<std::uint32_t> row_depth(colour ? 0 : static_cast<std::size_t>(width));
   for (int j = first_row; j < first_row + rows; ++j) {
     const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
     if (row_lo > row_hi) continue;
     const std::size_t row = static_cast<std::size_t>(j - first_row) * static_cast<std::size_t>(width);
+    const std::uint16_t* row_codes = codes ? codes + 4 * row : converted.data();
     if (rgba) {
-      color_codes_from_reals(rgba + row, static_cast<std::size_t>(width), color_max, row_codes.data());
-    } else {
+      color_codes_from_reals(rgba + row, static_cast<std::size_t>(width), color_max, converted.data());
+    } else if (!codes) {
       for (int i = 0; i < width; ++i)
         row_depth[static_cast<std::size_t>(i)] =
             fb_.config.depth_bits ? float_to_fixed(depth[row + static_cast<std::size_t>(i)], fb_.config.depth_bits) : 0;
@@ -317,12 +321,12 @@ void Context::draw_pixel_rows(const RasterFragments& raster, const RectanglePlac
     for (int y = row_lo; y <= row_hi; ++y) {
       // The stages after this may change the span's colours: each window row starts afresh.
       FragmentSpan span = buf.span(y, placement.x_first, count);
-      raster.put(span, 0, count, !rgba, rgba != nullptr);
-      if (rgba && placement.identity) {
-        std::copy(row_codes.begin(), row_codes.begin() + 4 * count, span.rgba);
-      } else if (rgba) {
+      raster.put(span, 0, count, !colour, colour);
+      if (colour && placement.identity) {
+        std::copy_n(row_codes, 4 * count, span.rgba);
+      } else if (colour) {
         for (int k = 0; k < count; ++k)
-          std::copy_n(&row_codes[4 * static_cast<std::size_t>(source_column[static_cast<std::size_t>(k)])], 4,
+          std::copy_n(row_codes + 4 * static_cast<std::size_t>(source_column[static_cast<std::size_t>(k)]), 4,
                       span.rgba + 4 * k);
       } else {
         for (int k = 0; k < count; ++k)
@@ -347,9 +351,59 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
   const RasterFragments raster = raster_fragments(options);
   transfer_bands_on_lanes(source, width, height, 2, band_rows, &setup,
                           [&](LaneStages& lane, const Rgba* band, int first_row, int rows) {
-                            draw_pixel_rows(raster, placement, width, first_row, rows, band, nullptr,
+                            draw_pixel_rows(raster, placement, width, first_row, rows, band, nullptr, nullptr,
                                             *lane.stages.first, lane.counters, lane.spans);
                           });
+}
+
+bool Context::copy_source_needed(const RectanglePlacement& placement, int y, int height) const {
+  const ColorPlane* read = color_buffer(pixel_.read_buffer);
+  if (std::none_of(draw_buffer_ids_.begin(), draw_buffer_ids_.end(),
+                   [&](ColorBufferId id) { return &fb_.color[static_cast<int>(id)] == read; }))
+    return false;
+  for (int j = 0; j < height; ++j) {
+    const auto [row_lo, row_hi] = placement.rows[static_cast<std::size_t>(j)];
+    // The source rows among the window rows source row j is drawn on: at most its own.
+    const std::int64_t a = std::max<std::int64_t>(row_lo, y), b = std::min<std::int64_t>(row_hi, std::int64_t{y} + height - 1);
+    if (a <= b && (a != b || a != std::int64_t{y} + j)) return true;
+  }
+  return false;
+}
+
+void Context::copy_pixels_through_table(const SourceCodes& source, const RectanglePlacement& placement, int width,
+                                        int height, const std::vector<Rgba>& table_reals) {
+  // The fragment codes of every code (draw_pixel_rows's final conversion of its transferred
+  // reals), looked up per pixel: the same codes as converting each pixel.
+  double color_max[4];
+  for (int k = 0; k < 4; ++k) color_max[k] = static_cast<double>(max_code(fragment_bits_[k]));
+  std::vector<std::uint16_t> table(4 * table_reals.size());
+  color_codes_from_reals(table_reals.data(), table_reals.size(), color_max, table.data());
+  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  count_transfer(transfer_, transform_.color.back(), n, n, counters());
+  constexpr int kBandRows = 16;
+  const std::size_t row_codes = 4 * static_cast<std::size_t>(width);
+  if (scratch_->lanes && height > kBandRows) {
+    TriangleOptions options;
+    const FragmentStagesSetup setup = fragment_stages_setup(options);
+    primitive_setup_valid_ = false;  // as prepare_fragment_stages would leave it
+    if (setup.texture) TextureStage::make_caches(setup.texture_setup);
+    const RasterFragments raster = raster_fragments(options);
+    bands_on_pixel_lanes(height, kBandRows, &setup, [&](int index, int first, int end) {
+      Scratch::PixelLane& lane = *scratch_->pixel_lanes[static_cast<std::size_t>(index)];
+      lane.band_codes.resize(row_codes * static_cast<std::size_t>(end - first));
+      source.through_table(first, end - first, table.data(), lane.band_codes.data(), row_codes);
+      draw_pixel_rows(raster, placement, width, first, end - first, nullptr, nullptr, lane.band_codes.data(),
+                      *lane.stages.first, lane.counters, lane.spans);
+    });
+    return;
+  }
+  const RasterFragments raster = prepare_rectangle_fragments();
+  std::vector<std::uint16_t> band(row_codes * static_cast<std::size_t>(std::min(height, kBandRows)));
+  for (int j = 0; j < height; j += kBandRows) {
+    const int rows = std::min(kBandRows, height - j);
+    source.through_table(j, rows, table.data(), band.data(), row_codes);
+    draw_pixel_rows(raster, placement, width, j, rows, nullptr, nullptr, band.data());
+  }
 }
 
 void Context::bands_on_lanes(int rows, int band_rows, const std::function<void(int, int, int)>& body) {
@@ -372,8 +426,8 @@ const RowSplitter* Context::rows_on_lanes() {
   return &scratch_->rows_on_lanes;
 }
 
-void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
-                                      const FragmentStagesSetup* setup, const TransferredBandUse& use) {
+void Context::bands_on_pixel_lanes(int height, int band_rows, const FragmentStagesSetup* setup,
+                                   const std::function<void(int lane, int first, int end)>& body) {
   std::vector<std::unique_ptr<Scratch::PixelLane>>& pixel_lanes = scratch_->pixel_lanes;
   while (pixel_lanes.size() < static_cast<std::size_t>(scratch_->lanes->lanes()))
     pixel_lanes.push_back(std::make_unique<Scratch::PixelLane>(fb_, fb_.config.width));
@@ -381,17 +435,22 @@ void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int 
     lane->counters = Counters{};
     if (setup) lane->stages.connect(*setup);
   }
+  bands_on_lanes(height, band_rows, body);
+  Counters& c = counters();
+  for (const auto& lane : pixel_lanes) c += lane->counters;
+}
+
+void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int height, int dims, int band_rows,
+                                      const FragmentStagesSetup* setup, const TransferredBandUse& use) {
   const Mat4& matrix = transform_.color.back();
-  bands_on_lanes(height, band_rows, [&](int index, int first, int end) {
-    Scratch::PixelLane& lane = *pixel_lanes[static_cast<std::size_t>(index)];
+  bands_on_pixel_lanes(height, band_rows, setup, [&](int index, int first, int end) {
+    Scratch::PixelLane& lane = *scratch_->pixel_lanes[static_cast<std::size_t>(index)];
     int rows = end - first, w = width;
     lane.band.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(rows));
     source.to_reals(first, rows, lane.band.data());
     transfer_rgba(lane.band, w, rows, transfer_, matrix, lane.counters, dims);
     use(lane, lane.band.data(), first, rows);
   });
-  Counters& c = counters();
-  for (const auto& lane : pixel_lanes) c += lane->counters;
 }
 
 void Context::draw_stencil_rectangle(int width, int height, const std::vector<double>& indices) {
@@ -535,11 +594,11 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
                          static_cast<std::uint64_t>(b[0] + b[1] + b[2] + b[3]);
-    std::vector<std::uint16_t> copy;
-    const SourceCodes source = read_framebuffer_codes(x, y, width, height, &copy);
     if (active_convolution(transfer_, 2)) {
       // A convolution needs its neighbours: the whole rectangle as reals, in buffers kept
-      // between calls (a fresh 32-byte-a-pixel buffer per call costs more than the filter).
+      // between calls (a fresh 32-byte-a-pixel buffer per call costs more than the filter);
+      // converted whole before anything is drawn, so read in place.
+      const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);
       std::vector<Rgba>& rgba = scratch_->rectangle;
       rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
       source.to_reals(0, height, rgba.data());
@@ -553,8 +612,14 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     // Every other step is per pixel: convert, transfer and draw a band of rows at a time
     // (the same operations in the same order as the whole rectangle at once; A22 holds, as
     // the source was read whole above).
-    c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    c.pixels_drawn += n;
     const RectanglePlacement placement = place_rectangle(width, height);
+    std::vector<std::uint16_t> copy;
+    const SourceCodes source =
+        read_framebuffer_codes(x, y, width, height, copy_source_needed(placement, y, height) ? &copy : nullptr);
+    const std::vector<Rgba> table_reals = transfer_table(source, 2, n);
+    if (!table_reals.empty()) return copy_pixels_through_table(source, placement, width, height, table_reals);
     constexpr int kBandRows = 16;
     if (scratch_->lanes && !transfer_.histogram.enabled && !transfer_.minmax.enabled && height > kBandRows) {
       copy_bands_on_lanes(source, placement, width, height, kBandRows);

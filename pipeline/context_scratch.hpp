@@ -56,10 +56,12 @@ struct Context::Scratch {
     bool simple = false;
   };
   std::vector<BatchVertex> batch_vertices;
-  // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals.
+  // copy_bands_on_lanes's, one per lane: stages, counters, span buffers and a band of reals
+  // (or of codes).
   struct PixelLane : LaneStages {
     using LaneStages::LaneStages;
     std::vector<Rgba> band;
+    std::vector<std::uint16_t> band_codes;
   };
   std::vector<std::unique_ptr<PixelLane>> pixel_lanes;
   // Two sets of chunks, used in turn: the raster queue refers to a set's triangles until it

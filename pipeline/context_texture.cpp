@@ -182,27 +182,48 @@ void Context::store_texels(TextureLevel& level, int x0, int y0, int width, int h
 void Context::copy_color_texels(int dims, int x, int y, int width, int height, TextureLevel& level, int x0, int y0,
                                 int store_width, int store_height) {
   constexpr int kBandRows = 16;
-  if (!scratch_->lanes || active_convolution(transfer_, dims) || transfer_.histogram.enabled ||
-      transfer_.minmax.enabled || height <= kBandRows) {
+  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
+  const std::vector<Rgba> table_reals = transfer_table(source, dims, n);
+  if (table_reals.empty() && (!scratch_->lanes || active_convolution(transfer_, dims) || transfer_.histogram.enabled ||
+                              transfer_.minmax.enabled || height <= kBandRows)) {
     std::vector<Rgba> rgba;
     std::vector<double> unused;
     read_for_texture(false, dims, x, y, width, height, rgba, unused);
     if (!rgba.empty()) store_texels(level, x0, y0, store_width, store_height, rgba, nullptr);
     return;
   }
-  // Every step is per pixel: each lane converts, transfers and stores whole bands of rows
-  // (read_for_texture's counting, then the transfer's and the stores' per lane: sums).
+  // Every step is per pixel (read_for_texture's counting, then the transfer's and the
+  // stores').
   Counters& c = counters();
   const FramebufferConfig& f = fb_.config;
-  const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   c.pixels_read += n;
   c.color_bits_read += n * static_cast<std::uint64_t>(f.color_bits[0] + f.color_bits[1] + f.color_bits[2] + f.color_bits[3]);
-  const SourceCodes source = read_framebuffer_codes(x, y, width, height, nullptr);  // nothing draws meanwhile
   level.texels_changed();
-  transfer_bands_on_lanes(source, width, height, dims, kBandRows, nullptr,
-                          [&](LaneStages&, const Rgba* band, int first_row, int rows) {
-                            write_texels(level, x0, y0 + first_row, width, rows, band, nullptr);
-                          });
+  if (!table_reals.empty()) {
+    // Per component: each code's texel codes found once (write_texels's conversion of its
+    // transferred reals), then looked up per texel, by ranges of rows on the lanes. A stored
+    // component is one of the source's own (Table 3.15: L and I from R), so output component
+    // k is a function of source component k alone; unstored components are 0 in every entry.
+    std::vector<std::uint32_t> table(4 * table_reals.size());
+    for (std::size_t i = 0; i < table_reals.size(); ++i) texel_codes(level.format, table_reals[i], &table[4 * i]);
+    count_transfer(transfer_, transform_.color.back(), n, n, c);
+    const std::size_t level_width = static_cast<std::size_t>(level.width);
+    const auto rows = [&](int first, int end) {
+      std::uint32_t* out =
+          &level.texels[4 * (static_cast<std::size_t>(y0 + first) * level_width + static_cast<std::size_t>(x0))];
+      source.through_table(first, end - first, table.data(), out, 4 * level_width);
+    };
+    const RowSplitter* split = rows_on_lanes();
+    split ? (*split)(height, rows) : rows(0, height);
+  } else {
+    // Each lane converts, transfers and stores whole bands of rows (the transfer's counters
+    // per lane: sums).
+    transfer_bands_on_lanes(source, width, height, dims, kBandRows, nullptr,
+                            [&](LaneStages&, const Rgba* band, int first_row, int rows) {
+                              write_texels(level, x0, y0 + first_row, width, rows, band, nullptr);
+                            });
+  }
   c.texture_bits_written += n * static_cast<std::uint64_t>(texel_bits(level.format));
 }
 
@@ -422,7 +443,10 @@ Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, in
   src.width = width;
   src.height = height;
   const auto& bits = fb_.config.color_bits;
-  for (int k = 0; k < 4; ++k) src.values[k] = bits[k] ? code_values(bits[k]) : nullptr;
+  for (int k = 0; k < 4; ++k) {
+    src.values[k] = bits[k] ? code_values(bits[k]) : nullptr;
+    src.bits[k] = bits[k];
+  }
   auto inside = [](int origin, int size, int limit, int& lo, int& hi) {
     const auto first = std::clamp<std::int64_t>(-std::int64_t{origin}, 0, size);
     lo = static_cast<int>(first);
@@ -447,6 +471,50 @@ Context::SourceCodes Context::read_framebuffer_codes(int x, int y, int width, in
   src.first = copy->data();
   src.stride = row;
   return src;
+}
+
+std::size_t Context::SourceCodes::table_entries() const {
+  return (std::size_t{1} << std::max({bits[0], bits[1], bits[2], bits[3]})) + 1;
+}
+
+std::vector<Rgba> Context::SourceCodes::table_reals() const {
+  const std::size_t inside = table_entries() - 1;
+  std::vector<Rgba> reals(inside + 1, Rgba{0, 0, 0, 0});  // the last: outside the window
+  for (std::size_t i = 0; i < inside; ++i)
+    for (std::size_t k = 0; k < 4; ++k)
+      reals[i][k] = values[k] ? values[k][std::min(i, (std::size_t{1} << bits[k]) - 1)] : 1.0;
+  return reals;
+}
+
+template <class Code>
+void Context::SourceCodes::through_table(int first_row, int rows, const Code* table, Code* out,
+                                         std::size_t out_stride) const {
+  const Code* outside = table + 4 * (table_entries() - 1);
+  const auto put_outside = [&](Code* o, int from, int to) {
+    for (int i = from; i < to; ++i) std::copy_n(outside, 4, o + 4 * i);
+  };
+  for (int j = first_row; j < first_row + rows; ++j) {
+    Code* o = out + static_cast<std::size_t>(j - first_row) * out_stride;
+    if (j < j_lo || j >= j_hi || i_lo >= i_hi) {
+      put_outside(o, 0, width);
+      continue;
+    }
+    put_outside(o, 0, i_lo);
+    put_outside(o, i_hi, width);
+    const std::uint16_t* c = first + stride * static_cast<std::size_t>(j - j_lo);
+    for (int i = i_lo; i < i_hi; ++i, c += 4)
+      for (std::size_t k = 0; k < 4; ++k) o[4 * i + k] = table[4 * std::size_t{c[k]} + k];
+  }
+}
+template void Context::SourceCodes::through_table(int, int, const std::uint16_t*, std::uint16_t*, std::size_t) const;
+template void Context::SourceCodes::through_table(int, int, const std::uint32_t*, std::uint32_t*, std::size_t) const;
+
+std::vector<Rgba> Context::transfer_table(const SourceCodes& source, int dims, std::uint64_t pixels) {
+  const Mat4& matrix = transform_.color.back();
+  if (!transfer_per_component(transfer_, matrix, dims) || source.table_entries() > pixels) return {};
+  std::vector<Rgba> reals = source.table_reals();
+  transfer_per_pixel_steps(transfer_, matrix, reals.data(), reals.size());
+  return reals;
 }
 
 void Context::SourceCodes::to_reals(int first_row, int rows, Rgba* out) const {

@@ -109,6 +109,31 @@ void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[
   (cpu_has_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
 }
 
+bool transfer_per_component(const PixelTransferState& s, const Mat4& m, int dims) {
+  return !active_convolution(s, dims) && !plan_transfer(s, m).color_matrix && !s.histogram.enabled &&
+         !s.minmax.enabled;
+}
+
+void transfer_per_pixel_steps(const PixelTransferState& s, const Mat4& m, Rgba* pixels, std::size_t n) {
+  // The kernels transfer_rgba chooses (the scalar and AVX2 ones agree bit for bit).
+  const TransferPlan plan = plan_transfer(s, m);
+  const bool wide = cpu_has_avx2();
+  (wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar)(plan, pixels, n);
+  (wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar)(plan, pixels, n);
+}
+
+void count_transfer(const PixelTransferState& s, const Mat4& m, std::uint64_t n_in, std::uint64_t n_out,
+                    Counters& counters) {
+  const TransferPlan plan = plan_transfer(s, m);
+  if (plan.scale_bias) counters.pixels_scale_bias += n_in;
+  if (s.map_color) counters.pixels_mapped += n_in;
+  if (plan.tables[kColorTable]) counters.color_table_lookups += n_in;
+  if (plan.color_matrix) counters.pixels_color_matrix += n_out;
+  if (plan.tables[kPostConvolutionTable]) counters.post_convolution_table_lookups += n_out;
+  if (plan.tables[kPostColorMatrixTable]) counters.post_color_matrix_table_lookups += n_out;
+  counters.pixels_transferred += n_in;
+}
+
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
                    Counters& counters, int dims, std::vector<Rgba>* spare, const RowSplitter* split) {
   const TransferPlan plan = plan_transfer(s, m);
@@ -139,16 +164,8 @@ bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTran
   }
   const auto post = wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar;
   by_rows([&](Rgba* p, std::size_t n) { post(plan, p, n); });
-  const bool scale_bias = plan.scale_bias, matrix = plan.color_matrix;
-  const bool use0 = plan.tables[0] != nullptr, use1 = plan.tables[1] != nullptr, use2 = plan.tables[2] != nullptr;
   const std::uint64_t n = pixels.size();
-  if (scale_bias) counters.pixels_scale_bias += n_in;
-  if (s.map_color) counters.pixels_mapped += n_in;
-  if (use0) counters.color_table_lookups += n_in;
-  if (matrix) counters.pixels_color_matrix += n;
-  if (use1) counters.post_convolution_table_lookups += n;
-  if (use2) counters.post_color_matrix_table_lookups += n;
-  counters.pixels_transferred += n_in;
+  count_transfer(s, m, n_in, n, counters);
   // Step 9: HISTOGRAM — index round(clamp(c, 0, 1)·(W − 1)) per component the format has;
   // counters saturate (A23). The pixels themselves are unchanged.
   Histogram& h = s.histogram;

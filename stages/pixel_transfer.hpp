@@ -102,6 +102,19 @@ void color_codes_from_reals_scalar(const Rgba* pixels, std::size_t n, const doub
 void color_codes_from_reals_avx2(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out);
 void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out);
 
+// True when steps 2–8 take each component through a function of that component alone (scale
+// and bias, MAP_COLOR and the three colour tables look a component up at its own value): no
+// convolution for `dims`, no colour-matrix step (plan_transfer's color_matrix), no histogram
+// and no minmax. Then the result for every code of a component can be found once and looked
+// up per pixel (Context::copy_pixels_through_table).
+bool transfer_per_component(const PixelTransferState& state, const Mat4& color_matrix, int dims);
+// Steps 2–4 and 6–8 over n pixels in place, counting nothing (with no convolution between
+// them: the caller has checked transfer_per_component).
+void transfer_per_pixel_steps(const PixelTransferState& state, const Mat4& color_matrix, Rgba* pixels, std::size_t n);
+// The counters of a transfer of n_in pixels (n_out after a REDUCE convolution).
+void count_transfer(const PixelTransferState& state, const Mat4& color_matrix, std::uint64_t n_in,
+                    std::uint64_t n_out, Counters& counters);
+
 // Applies the RGBA transfer operations to a width x height image in place, in the spec's
 // order; a REDUCE convolution changes width and height. `dims` is 1 for 1D textures.
 // Returns false when a histogram or minmax sink consumed the pixels (nothing further is

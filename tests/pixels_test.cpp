@@ -538,3 +538,158 @@ TEST(Pixels, BandedCopyEqualsTheWholeRectangleCopy) {
   EXPECT_EQ(banded, whole);
   EXPECT_EQ(banded[2], 30u * 37u);
 }
+
+namespace {
+
+// The per-component transfer of the two tests below, and its value for one component worked
+// from §3.6.5 in doubles: step 2 scale and bias, step 3 MAP_COLOR (clamp, index
+// ⌊c·(size − 1) + ½⌋), step 4 COLOR_TABLE (RGBA, 64 entries, the same index rule), step 8
+// POST_COLOR_MATRIX_COLOR_TABLE (LUMINANCE, 16 entries: R, G and B each from its own index,
+// alpha untouched).
+struct PerComponentTransfer {
+  float scale[4] = {1.5f, 1.0f, 0.75f, 4096.0f}, bias[4] = {0.0f, -0.2f, 0.1f, 0.0f};
+  std::vector<float> maps[4] = {{0.1f, 0.9f, 0.3f, 0.7f, 0.2f, 1.0f, 0.0f, 0.55f},
+                                {0.25f, 0.5f, 0.75f, 1.0f},
+                                {0.0f, 0.05f, 0.1f, 0.2f, 0.3f, 0.35f, 0.4f, 0.5f, 0.6f, 0.65f, 0.7f, 0.8f, 0.85f,
+                                 0.9f, 0.95f, 1.0f},
+                                {0.0f, 1.0f}};
+  std::vector<float> table = std::vector<float>(64 * 4), post = std::vector<float>(16);
+  bool map = false;
+  PerComponentTransfer() {
+    for (std::size_t i = 0; i < table.size(); ++i) table[i] = static_cast<float>((i * 37) % 64) / 63.0f;
+    for (std::size_t i = 0; i < post.size(); ++i) post[i] = static_cast<float>((i * 5) % 16) / 15.0f;
+  }
+  void apply(Context& ctx) const {
+    const GLenum scales[4] = {GL_RED_SCALE, GL_GREEN_SCALE, GL_BLUE_SCALE, GL_ALPHA_SCALE};
+    const GLenum biases[4] = {GL_RED_BIAS, GL_GREEN_BIAS, GL_BLUE_BIAS, GL_ALPHA_BIAS};
+    const GLenum map_names[4] = {GL_PIXEL_MAP_R_TO_R, GL_PIXEL_MAP_G_TO_G, GL_PIXEL_MAP_B_TO_B, GL_PIXEL_MAP_A_TO_A};
+    for (int k = 0; k < 4; ++k) {
+      ctx.glPixelTransferf(scales[k], scale[k]);
+      ctx.glPixelTransferf(biases[k], bias[k]);
+      ctx.glPixelMapfv(map_names[k], static_cast<GLsizei>(maps[k].size()), maps[k].data());
+    }
+    ctx.glPixelTransferi(GL_MAP_COLOR, map ? GL_TRUE : GL_FALSE);
+    ctx.glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, table.data());
+    ctx.glEnable(GL_COLOR_TABLE);
+    ctx.glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE, 16, GL_LUMINANCE, GL_FLOAT, post.data());
+    ctx.glEnable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
+  }
+  static std::size_t index(double v, std::size_t size) {
+    return static_cast<std::size_t>(std::floor(std::clamp(v, 0.0, 1.0) * static_cast<double>(size - 1) + 0.5));
+  }
+  double value(int k, std::uint32_t code, int bits) const {
+    double v = static_cast<double>(code) / ((1 << bits) - 1);
+    v = v * static_cast<double>(scale[k]) + static_cast<double>(bias[k]);
+    if (map) v = maps[k][index(v, maps[k].size())];
+    v = table[4 * index(v, 64) + static_cast<std::size_t>(k)];
+    if (k < 3) v = post[index(v, 16)];
+    return v;
+  }
+  static std::uint32_t code(double v, int bits) {
+    return static_cast<std::uint32_t>(std::floor(std::clamp(v, 0.0, 1.0) * ((1 << bits) - 1) + 0.5));
+  }
+};
+
+// A 12-bit window of varied codes (each channel from its own hash of the pixel).
+void fill_varied(Context& ctx, int w, int h) {
+  std::vector<GLushort> image(4 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (std::size_t i = 0; i < image.size(); ++i) image[i] = static_cast<GLushort>((i * 2654435761u) >> 13);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_SHORT, image.data());
+}
+
+}  // namespace
+
+TEST(Pixels, CopyPixelsThroughAPerComponentTransferMatchesTheSpecFormulas) {
+  // Every step of this transfer takes a component through a function of that component alone,
+  // so a copy of more pixels than the 4,097 codes (and the outside) of a 12-bit window finds
+  // each code's result once (Context::copy_pixels_through_table); a smaller one converts each
+  // pixel. Both must give what the formulas give the source's codes, on one thread and two.
+  // The big copy moves the window up one row onto itself: each band must read its rows before
+  // the band below writes them (a copy of the source first; a mutation skipping it smears row
+  // 0 upwards), while the in-place copies read the window directly.
+  for (const bool map : {false, true})
+    for (const int threads : {1, 2})
+      for (const auto& [width, height, dy] : {std::array<int, 3>{128, 60, 1}, std::array<int, 3>{128, 60, 0},
+                                              std::array<int, 3>{9, 7, 0}}) {
+        Context ctx(test::small_config(128, 64, 12));
+        ctx.set_threads(threads);
+        test::window_projection(ctx);
+        fill_varied(ctx, 128, 64);
+        const std::vector<std::uint16_t> source = ctx.framebuffer().color[0].rgba;
+        PerComponentTransfer transfer;
+        transfer.map = map;
+        transfer.apply(ctx);
+        const Counters before = ctx.total_counters();
+        ctx.glRasterPos2i(0, dy);
+        ctx.glCopyPixels(0, 0, width, height, GL_COLOR);
+        ASSERT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+        int wrong = 0;
+        for (int y = 0; y < 64; ++y)
+          for (int x = 0; x < 128; ++x) {
+            const bool copied = x < width && y >= dy && y < dy + height;
+            const std::size_t from = 4 * (static_cast<std::size_t>(copied ? y - dy : y) * 128 + static_cast<std::size_t>(x));
+            const auto got = test::pixel(ctx, x, y);
+            for (int k = 0; k < 4; ++k) {
+              const std::uint32_t c = source[from + static_cast<std::size_t>(k)];
+              const std::uint32_t want = copied ? PerComponentTransfer::code(transfer.value(k, c, 12), 12) : c;
+              if (got[static_cast<std::size_t>(k)] != want && ++wrong <= 3)
+                ADD_FAILURE() << "map " << map << " threads " << threads << " copy " << width << "x" << height
+                              << " pixel (" << x << ", " << y << ") component " << k << ": " << got[static_cast<std::size_t>(k)]
+                              << ", want " << want;
+            }
+          }
+        EXPECT_EQ(wrong, 0);
+        const Counters t = ctx.total_counters();
+        const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+        EXPECT_EQ(t.pixels_transferred - before.pixels_transferred, n);
+        EXPECT_EQ(t.pixels_scale_bias - before.pixels_scale_bias, n);
+        EXPECT_EQ(t.pixels_mapped - before.pixels_mapped, map ? n : 0u);
+        EXPECT_EQ(t.color_table_lookups - before.color_table_lookups, n);
+        EXPECT_EQ(t.post_color_matrix_table_lookups - before.post_color_matrix_table_lookups, n);
+        EXPECT_EQ(t.pixels_color_matrix - before.pixels_color_matrix, 0u);
+        EXPECT_EQ(t.fragments_written - before.fragments_written, n);
+      }
+}
+
+TEST(Pixels, CopyTexImageThroughAPerComponentTransferMatchesTheSpecFormulas) {
+  // The same transfer on the way into a LUMINANCE8_ALPHA8 texture (Table 3.15: L from R, A
+  // from A, each rounded to 8 bits): 128x64 texels (more than the codes: looked up per texel)
+  // and 8x4 (converted per texel), on one thread and two.
+  for (const int threads : {1, 2})
+    for (const auto& [width, height] : {std::array<int, 2>{128, 64}, std::array<int, 2>{8, 4}}) {
+      Context ctx(test::small_config(128, 64, 12));
+      ctx.set_threads(threads);
+      test::window_projection(ctx);
+      fill_varied(ctx, 128, 64);
+      const std::vector<std::uint16_t> source = ctx.framebuffer().color[0].rgba;
+      PerComponentTransfer transfer;
+      transfer.map = true;
+      transfer.apply(ctx);
+      GLuint tex = 0;
+      ctx.glGenTextures(1, &tex);
+      ctx.glBindTexture(GL_TEXTURE_2D, tex);
+      ctx.glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE8_ALPHA8, 0, 0, width, height, 0);
+      ASSERT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+      std::vector<GLubyte> texels(2 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+      ctx.glPixelTransferi(GL_MAP_COLOR, GL_FALSE);  // read back unchanged: identity transfer
+      ctx.glDisable(GL_COLOR_TABLE);
+      ctx.glDisable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
+      for (const GLenum s : {GL_RED_SCALE, GL_GREEN_SCALE, GL_BLUE_SCALE, GL_ALPHA_SCALE}) ctx.glPixelTransferf(s, 1.0f);
+      for (const GLenum b : {GL_RED_BIAS, GL_GREEN_BIAS, GL_BLUE_BIAS, GL_ALPHA_BIAS}) ctx.glPixelTransferf(b, 0.0f);
+      ctx.glGetTexImage(GL_TEXTURE_2D, 0, GL_LUMINANCE_ALPHA, GL_UNSIGNED_BYTE, texels.data());
+      int wrong = 0;
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const std::size_t from = 4 * (static_cast<std::size_t>(y) * 128 + static_cast<std::size_t>(x));
+          const std::size_t at = 2 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x));
+          const std::uint32_t want_l = PerComponentTransfer::code(transfer.value(0, source[from], 12), 8);
+          const std::uint32_t want_a = PerComponentTransfer::code(transfer.value(3, source[from + 3], 12), 8);
+          if ((texels[at] != want_l || texels[at + 1] != want_a) && ++wrong <= 3)
+            ADD_FAILURE() << "threads " << threads << " copy " << width << "x" << height << " texel (" << x << ", " << y
+                          << "): L " << int{texels[at]} << " A " << int{texels[at + 1]} << ", want " << want_l << " "
+                          << want_a;
+        }
+      EXPECT_EQ(wrong, 0);
+    }
+}
