@@ -770,7 +770,9 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     Counters& counted = share.counters;
     for (std::size_t chunk = next_chunk++; chunk < chunks; chunk = next_chunk++) {
       std::vector<AssembledTriangle>& out = drawn[chunk].triangles;
+      std::vector<TriangleRows>& out_rows = drawn[chunk].rows;
       out.clear();
+      out_rows.clear();
       const std::size_t last = std::min(triangles, (chunk + 1) * kChunkTriangles);
       for (std::size_t t = chunk * kChunkTriangles; t < last; ++t) {
         const Scratch::BatchVertex* d[3] = {&vertices[batch.vertices[3 * t]], &vertices[batch.vertices[3 * t + 1]],
@@ -779,7 +781,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
           // What assemble_polygon does with a triangle that is not clipped, from the vertices'
           // window positions and colours found once.
           ++counted.primitives_in;
-          AssembledTriangle drawn_triangle{{d[0]->window, d[1]->window, d[2]->window}, Vec4{}, t, TriangleRows{}};
+          AssembledTriangle drawn_triangle{{d[0]->window, d[1]->window, d[2]->window}, Vec4{}, t};
           const Facing facing = polygon_facing(drawn_triangle.v, 3, counted);
           if (!facing.drawn) continue;
           const auto face = static_cast<std::size_t>(facing.face);
@@ -787,9 +789,9 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
           for (int k = 0; k < 3; ++k)
             if (lit || face == 1) drawn_triangle.v[k].color = lit ? d[k]->lit[face] : d[k]->vertex.color[face];
           drawn_triangle.flat_color = lit ? d[2]->lit[face] : d[2]->vertex.color[face];
-          drawn_triangle.rows = triangle_rows(drawn_triangle.v[0], drawn_triangle.v[1], drawn_triangle.v[2],
-                                              profile_.limits.subpixel_bits, fb_.config.height);
           out.push_back(drawn_triangle);
+          out_rows.push_back(triangle_rows(drawn_triangle.v[0], drawn_triangle.v[1], drawn_triangle.v[2],
+                                           profile_.limits.subpixel_bits, fb_.config.height));
           continue;
         }
         const ProcessedVertex* p[3] = {&d[0]->vertex, &d[1]->vertex, &d[2]->vertex};
@@ -799,10 +801,10 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
           if (work.warnings & (1u << kind)) share.first_warned[kind] = std::min(share.first_warned[kind], t);
         if (!drawn_here) continue;
         const std::vector<RasterVertex>& win = work.window;
-        for (std::size_t k = 1; k + 1 < win.size(); ++k)
-          out.push_back(AssembledTriangle{
-              {win[0], win[k], win[k + 1]}, work.flat_color, t,
-              triangle_rows(win[0], win[k], win[k + 1], profile_.limits.subpixel_bits, fb_.config.height)});
+        for (std::size_t k = 1; k + 1 < win.size(); ++k) {
+          out.push_back(AssembledTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
+          out_rows.push_back(triangle_rows(win[0], win[k], win[k + 1], profile_.limits.subpixel_bits, fb_.config.height));
+        }
       }
     }
   });
@@ -831,15 +833,17 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     // By reference (each triangle's options are these but for its flat colour).
     const TriangleOptions options = polygon_options(setup_options, Vec4{});
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-      lanes->triangles(drawn[chunk].triangles.data(), drawn[chunk].triangles.size(), options, *setup, pass);
+      lanes->triangles(drawn[chunk].triangles.data(), drawn[chunk].rows.data(), drawn[chunk].triangles.size(), options,
+                       *setup, pass);
     scratch_->chunk_set_queue[set] = lanes->queue_serial();
   } else if (setup) {
     TriangleOptions options = polygon_options(setup_options, Vec4{});
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
-      for (const AssembledTriangle& triangle : drawn[chunk].triangles) {
+      for (std::size_t t = 0; t < drawn[chunk].triangles.size(); ++t) {
+        const AssembledTriangle& triangle = drawn[chunk].triangles[t];
         options.flat_color = triangle.flat_color;
         rasterize_triangle(triangle.v[0], triangle.v[1], triangle.v[2], options, setup->target, scratch_->spans,
-                           fragment_sink(), pass, &triangle.rows);
+                           fragment_sink(), pass, &drawn[chunk].rows[t]);
       }
   }
   prim_vertex_count_ += 3 * triangles;

@@ -68,6 +68,7 @@ struct Context::Scratch {
   // is run (chunk_set_queue: the queue that last took a set's triangles).
   struct alignas(64) BatchChunk {
     std::vector<AssembledTriangle> triangles;
+    std::vector<TriangleRows> rows;  // each triangle's
   };
   std::vector<BatchChunk> batch_chunks[2];
   std::uint64_t chunk_set_queue[2] = {0, 0};

@@ -119,12 +119,13 @@ void RasterLanes::triangle(const RasterVertex& a, const RasterVertex& b, const R
   add(Job{{a, b, c}, options, false, 1.0}, 1, setup, pass);
 }
 
-void RasterLanes::triangles(const AssembledTriangle* first, std::size_t count, const TriangleOptions& options,
-                            const FragmentStagesSetup& setup, Counters& pass) {
+void RasterLanes::triangles(const AssembledTriangle* first, const TriangleRows* rows, std::size_t count,
+                            const TriangleOptions& options, const FragmentStagesSetup& setup, Counters& pass) {
   if (count == 0) return;
   Job job;
   job.options = options;
   job.run = first;
+  job.run_rows = rows;
   job.run_count = count;
   add(job, count, setup, pass);
 }
@@ -139,10 +140,11 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
     if (job.run) {
       TriangleOptions options = job.options;
       for (std::size_t t = 0; t < job.run_count; ++t) {
+        if (pass_over_triangle(job.run_rows[t], target, lane.counters)) continue;
         const AssembledTriangle& triangle = job.run[t];
         options.flat_color = triangle.flat_color;
         rasterize_triangle(triangle.v[0], triangle.v[1], triangle.v[2], options, target, lane.spans,
-                           *lane.stages.first, lane.counters, &triangle.rows);
+                           *lane.stages.first, lane.counters, &job.run_rows[t]);
       }
     } else if (job.is_point)
       rasterize_point(job.v[0], job.point_size, target, lane.spans, *lane.stages.first, lane.counters);

@@ -26,14 +26,14 @@
 namespace passim {
 
 // A triangle a display-list block assembled (Context::draw_triangle_batch): its window
-// vertices, the colour flat shading gives it, the block's triangle it comes from, and its
-// rows on the window (triangle_rows: found while assembling, on every lane, so that a row
-// group holding none of them passes it over without setting it up).
+// vertices, the colour flat shading gives it, and the block's triangle it comes from. Its
+// rows on the window (triangle_rows) are found while assembling, on every lane, and kept
+// apart, 8 bytes a triangle: a row group holding none of them passes it over without
+// reading it (pass_over_triangle), let alone setting it up.
 struct AssembledTriangle {
   RasterVertex v[3];
   Vec4 flat_color;
   std::size_t source;
-  TriangleRows rows;
 };
 
 class RasterLanes {
@@ -54,8 +54,8 @@ class RasterLanes {
   // Queue `count` triangles drawn with `options` but each its own flat colour, by reference:
   // they must stay as they are until the queue is run (queue_serial() has moved on, or
   // pending() is false).
-  void triangles(const AssembledTriangle* first, std::size_t count, const TriangleOptions& options,
-                 const FragmentStagesSetup& setup, Counters& pass);
+  void triangles(const AssembledTriangle* first, const TriangleRows* rows, std::size_t count,
+                 const TriangleOptions& options, const FragmentStagesSetup& setup, Counters& pass);
   // Which queue is being filled: it changes when a queue has been run.
   std::uint64_t queue_serial() const { return batch_; }
   // Finish the queue; the lanes' counters are added to `pass`.
@@ -94,6 +94,7 @@ class RasterLanes {
     bool is_point = false;
     double point_size = 1.0;
     const AssembledTriangle* run = nullptr;  // triangles queued by reference: v unused
+    const TriangleRows* run_rows = nullptr;  // their rows
     std::size_t run_count = 0;
   };
   using Lane = LaneStages;

@@ -105,11 +105,17 @@ TriangleRows triangle_rows(const RasterVertex& a, const RasterVertex& b, const R
   return TriangleRows{static_cast<std::int32_t>(first), static_cast<std::int32_t>(last)};
 }
 
+bool pass_over_triangle(const TriangleRows& rows, const RasterTarget& target, Counters& counters) {
+  if (rows.first <= rows.last && target.owns_any_row(rows.first, rows.last)) return false;
+  if (target.counts_primitives()) ++counters.triangles_rasterized;
+  return true;
+}
+
 void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
                         FragmentSink& sink, Counters& counters, const TriangleRows* rows) {
+  if (rows && pass_over_triangle(*rows, target, counters)) return;
   if (target.counts_primitives()) ++counters.triangles_rasterized;
-  if (rows && (rows->first > rows->last || !target.owns_any_row(rows->first, rows->last))) return;
   const std::int64_t S = std::int64_t{1} << target.subpixel_bits;  // half a pixel in doubled units
   const std::int64_t pixel = 2 * S;
   const RasterVertex* v[3] = {&a, &b, &c};

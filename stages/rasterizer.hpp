@@ -100,6 +100,9 @@ struct TriangleRows {
 };
 TriangleRows triangle_rows(const RasterVertex& v0, const RasterVertex& v1, const RasterVertex& v2, int subpixel_bits,
                            int window_height);
+// True when `target` owns none of `rows`: the triangle is then passed over, counted as
+// rasterize_triangle counts it, without its vertices being read.
+bool pass_over_triangle(const TriangleRows& rows, const RasterTarget& target, Counters& counters);
 
 // `rows`, when given, is triangle_rows of the same vertices on the same target: a triangle
 // none of whose rows the target owns is then passed over without being set up (raster
