@@ -105,12 +105,6 @@ TriangleRows triangle_rows(const RasterVertex& a, const RasterVertex& b, const R
   return TriangleRows{static_cast<std::int32_t>(first), static_cast<std::int32_t>(last)};
 }
 
-bool pass_over_triangle(const TriangleRows& rows, const RasterTarget& target, Counters& counters) {
-  if (rows.first <= rows.last && target.owns_any_row(rows.first, rows.last)) return false;
-  if (target.counts_primitives()) ++counters.triangles_rasterized;
-  return true;
-}
-
 void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
                         FragmentSink& sink, Counters& counters, const TriangleRows* rows) {

@@ -38,11 +38,17 @@ struct RasterTarget {
     return band_cycle <= 1 || static_cast<std::uint64_t>((row / band_rows) % band_cycle - band_first) <
                                   static_cast<std::uint64_t>(band_count);
   }
+  // For rows in [0, 2^31). Three 32-bit divisions, whatever the number of bands (it runs for
+  // every queued triangle in every row group).
   bool owns_any_row(std::int64_t first_row, std::int64_t last_row) const {
     if (band_cycle <= 1) return true;
-    for (std::int64_t band = first_row / band_rows; band <= last_row / band_rows; ++band) {
-      if (band - first_row / band_rows >= band_cycle) return true;  // a whole cycle: every owner
-      if (owns_row(band * band_rows)) return true;
+    const auto rows = static_cast<std::uint32_t>(band_rows), cycle = static_cast<std::uint32_t>(band_cycle);
+    const std::uint32_t first_band = static_cast<std::uint32_t>(first_row) / rows;
+    const std::uint32_t bands = static_cast<std::uint32_t>(last_row) / rows - first_band + 1;
+    if (bands > cycle) return true;  // more than a whole cycle: every owner
+    for (std::uint32_t k = 0, in_cycle = first_band % cycle; k < bands; ++k) {
+      if (in_cycle - static_cast<std::uint32_t>(band_first) < static_cast<std::uint32_t>(band_count)) return true;
+      if (++in_cycle == cycle) in_cycle = 0;
     }
     return false;
   }
@@ -102,7 +108,11 @@ TriangleRows triangle_rows(const RasterVertex& v0, const RasterVertex& v1, const
                            int window_height);
 // True when `target` owns none of `rows`: the triangle is then passed over, counted as
 // rasterize_triangle counts it, without its vertices being read.
-bool pass_over_triangle(const TriangleRows& rows, const RasterTarget& target, Counters& counters);
+inline bool pass_over_triangle(const TriangleRows& rows, const RasterTarget& target, Counters& counters) {
+  if (rows.first <= rows.last && target.owns_any_row(rows.first, rows.last)) return false;
+  if (target.counts_primitives()) ++counters.triangles_rasterized;
+  return true;
+}
 
 // `rows`, when given, is triangle_rows of the same vertices on the same target: a triangle
 // none of whose rows the target owns is then passed over without being set up (raster

@@ -396,3 +396,27 @@ TEST(Raster, RowOwnershipWalksAsOwnsRowDecides) {
           }
         }
 }
+
+TEST(Raster, OwnsAnyRowIsWhetherAnyOfTheRowsIsOwned) {
+  // owns_any_row counts bands in the cycle rather than asking owns_row row by row: the same
+  // answer as asking every row, for every range of rows over a few cycles, for lanes owning
+  // one or more bands of cycles of several lengths.
+  for (const int band_rows : {1, 3, 5})
+    for (const int cycle : {2, 3, 4, 8})
+      for (int first = 0; first < cycle; ++first)
+        for (int count = 1; first + count <= cycle; ++count) {
+          RasterTarget t;
+          t.band_rows = band_rows;
+          t.band_cycle = cycle;
+          t.band_first = first;
+          t.band_count = count;
+          const int span = 3 * cycle * band_rows;
+          for (int a = 0; a < span; ++a)
+            for (int b = a; b < span; ++b) {
+              bool any = false;
+              for (int r = a; r <= b && !any; ++r) any = t.owns_row(r);
+              ASSERT_EQ(t.owns_any_row(a, b), any) << band_rows << " " << cycle << " " << first << " " << count << " rows "
+                                                   << a << "-" << b;
+            }
+        }
+}
