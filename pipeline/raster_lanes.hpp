@@ -121,6 +121,8 @@ class RasterLanes {
   template <class Ready>
   void wait(std::unique_lock<std::mutex>& lock, std::condition_variable& cv, Ready ready);
 
+  // The row group of each stripe of the window (stripe b: group b mod the groups).
+  std::vector<std::uint16_t> stripe_groups_;
   std::unique_ptr<Job[]> jobs_;  // fixed storage: the lanes read earlier jobs while later ones are added
   std::size_t queued_ = 0;       // jobs in the queue (written by the calling thread only)
   std::size_t primitives_ = 0;   // primitives in those jobs (likewise)
