@@ -537,6 +537,14 @@ void FragmentOps::replace_span(const FragmentSpan& span, int begin, int end, Cou
 }
 
 void FragmentOps::process(FragmentSpan& span) {
+  if (!span.rows) return process_row(span);
+  for (int k = 0; k < span.row_count; ++k) {
+    FragmentSpan row = span.row(k);
+    process_row(row);
+  }
+}
+
+void FragmentOps::process_row(FragmentSpan& span) {
   const FragmentOpsState& ops = *in_.ops;
   const FramebufferControlState& ctl = *in_.control;
   const FramebufferConfig& cfg = fb_.config;

@@ -27,12 +27,14 @@ class FragmentOps final : public FragmentSink {
  public:
   FragmentOps(Framebuffer& fb, Counters*& counters) : fb_(fb), counters_(counters) {}
   void configure(const FragmentOpsInput& input) { in_ = input; }
+  // A span of several rows is taken row by row.
   void process(FragmentSpan& span) override;
   // Testing hook: run every span through the general path (the specialised replace path
   // is checked against it).
   static bool general_path_only;
 
  private:
+  void process_row(FragmentSpan& span);
   void replace_span(const FragmentSpan& span, int begin, int end, Counters& counters);
   // Return the number of fragments they kill.
   std::uint64_t depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,

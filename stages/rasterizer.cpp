@@ -202,6 +202,22 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   const double depth_scale = static_cast<double>(max_code(target.depth_bits));
   double color_scale[4];
   for (int k = 0; k < 4; ++k) color_scale[k] = static_cast<double>(max_code(target.color_bits[k]));
+  // The rows go to the stages together, as one span of several rows, as many as the span
+  // buffers hold: the texture stage then takes a triangle's fragments in one run.
+  int stored = 0, stored_rows = 0;
+  const auto hand_over = [&] {
+    if (stored_rows == 0) return;
+    FragmentSpan rows = buffers.span(0, 0, stored);
+    if (stored_rows == 1) {
+      rows.y = buffers.rows[0].y;
+      rows.x0 = buffers.rows[0].x0;
+    } else {
+      rows.rows = buffers.rows.data();
+      rows.row_count = stored_rows;
+    }
+    sink.process(rows);
+    stored = stored_rows = 0;
+  };
   RowOwnership ownership(target, row_lo);
   for (std::int64_t row = row_lo; row <= row_hi; ++row, ownership.next_row()) {
     if (!ownership.owned()) continue;
@@ -222,7 +238,10 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
     }
     if (lo > hi) continue;
     const int x0 = static_cast<int>(lo), n = static_cast<int>(hi - lo + 1);
-    FragmentSpan span = buffers.span(static_cast<int>(row), x0, n);
+    if (stored + n > buffers.capacity()) hand_over();
+    FragmentSpan span = buffers.span_at(stored, static_cast<int>(row), x0, n);
+    buffers.rows[static_cast<std::size_t>(stored_rows++)] = SpanRow{static_cast<int>(row), x0, n, stored};
+    stored += n;
     counters.fragments_generated += static_cast<std::uint64_t>(n);
 
     const double cy = static_cast<double>(row) + 0.5;
@@ -248,8 +267,8 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
         span.fog[i] = std::fabs((f_row + fog_plane.dfdx * dx) / (q_row + fog_q.dfdx * dx));
       }
     }
-    sink.process(span);
   }
+  hand_over();
 }
 
 void rasterize_point(const RasterVertex& v, double size, const RasterTarget& target, SpanBuffers& buffers,
