@@ -536,15 +536,65 @@ void FragmentOps::replace_span(const FragmentSpan& span, int begin, int end, Cou
   counters.color_bits_written += passed * static_cast<std::uint64_t>(mask_bits);
 }
 
+FragmentOps::Plan FragmentOps::plan() const {
+  const FragmentOpsState& ops = *in_.ops;
+  const FramebufferControlState& ctl = *in_.control;
+  const FramebufferConfig& cfg = fb_.config;
+  const std::array<int, 4>& fragment_bits = *in_.fragment_bits;
+  Plan p;
+  p.replace_only = !general_path_only && !ops.alpha_test && !(ops.stencil_test && cfg.stencil_bits > 0) && !ops.blend &&
+                   !ops.logic_op_enabled && fragment_bits == cfg.color_bits && in_.draw_buffers->size() == 1;
+  if (p.replace_only) return p;
+  if (ops.alpha_test) p.alpha_ref = float_to_fixed(ops.alpha_ref, fragment_bits[3]);
+  p.stencil_on = ops.stencil_test && cfg.stencil_bits > 0;
+  p.depth_on = ops.depth_test && cfg.depth_bits > 0;
+  p.logic_on = ops.logic_op_enabled;
+  p.blend_on = ops.blend && !p.logic_on;
+  for (int k = 0; k < 4; ++k)
+    if (ctl.color_mask[k]) p.mask_bits += cfg.color_bits[k];
+  p.total_bits = cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3];
+  p.same_widths = fragment_bits == cfg.color_bits;
+  p.all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
+  // The masked write (§4.2.2) keeps only these channels: the others need no blend.
+  for (int k = 0; k < 4; ++k) p.written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
+  p.unit_factors = p.blend_on && p.same_widths && !general_path_only &&
+                   blend_has_unit_factors(ops.blend_equation, ops.blend_src, ops.blend_dst);
+  if (p.unit_factors) {
+    // Factors 0 and 1 on codes of one width: the same results in integers. A channel
+    // without bits is not written, so it needs no value.
+    p.unit.equation = ops.blend_equation;
+    p.unit.src_one = ops.blend_src == GL_ONE;
+    p.unit.dst_one = ops.blend_dst == GL_ONE;
+    for (int k = 0; k < 4; ++k) {
+      p.unit.max[k] = max_code(cfg.color_bits[k]);
+      p.unit.written[k] = p.written[k];
+    }
+  } else if (p.blend_on) {
+    p.real.equation = ops.blend_equation;
+    p.real.src_factor = ops.blend_src;
+    p.real.dst_factor = ops.blend_dst;
+    p.real.products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
+    for (int k = 0; k < 4; ++k) {
+      p.real.constant[k] = ops.blend_color[k];
+      p.real.src_bits[k] = fragment_bits[k];
+      p.real.dst_bits[k] = cfg.color_bits[k];
+      p.real.written[k] = p.written[k];
+    }
+  }
+  return p;
+}
+
 void FragmentOps::process(FragmentSpan& span) {
-  if (!span.rows) return process_row(span);
+  // What depends on the state alone is found once for all the span's rows.
+  const Plan p = plan();
+  if (!span.rows) return process_row(p, span);
   for (int k = 0; k < span.row_count; ++k) {
     FragmentSpan row = span.row(k);
-    process_row(row);
+    process_row(p, row);
   }
 }
 
-void FragmentOps::process_row(FragmentSpan& span) {
+void FragmentOps::process_row(const Plan& p, FragmentSpan& span) {
   const FragmentOpsState& ops = *in_.ops;
   const FramebufferControlState& ctl = *in_.control;
   const FramebufferConfig& cfg = fb_.config;
@@ -563,8 +613,7 @@ void FragmentOps::process_row(FragmentSpan& span) {
     end = b;
   }
   if (begin >= end) return;
-  if (!general_path_only && !ops.alpha_test && !(ops.stencil_test && cfg.stencil_bits > 0) && !ops.blend &&
-      !ops.logic_op_enabled && fragment_bits == cfg.color_bits && in_.draw_buffers->size() == 1) {
+  if (p.replace_only) {
     replace_span(span, begin, end, counters);
     return;
   }
@@ -573,10 +622,8 @@ void FragmentOps::process_row(FragmentSpan& span) {
 
   // Alpha test (§4.1.3): reference and fragment alpha compared as codes at the alpha width.
   if (ops.alpha_test) {
-    const int abits = fragment_bits[3];
-    const std::uint32_t ref = float_to_fixed(ops.alpha_ref, abits);
     for (int i = begin; i < end; ++i) {
-      if (!compare(ops.alpha_func, span.rgba[4 * i + 3], ref)) {
+      if (!compare(ops.alpha_func, span.rgba[4 * i + 3], p.alpha_ref)) {
         live[i] = 0;
         ++counters.killed_alpha;
         --alive;
@@ -586,41 +633,27 @@ void FragmentOps::process_row(FragmentSpan& span) {
 
   // Stencil (§4.1.4) and depth (§4.1.5) tests; the stencil update depends on both.
   const std::size_t row_base = fb_.pixel_index(span.x0, span.y);
-  const bool has_stencil = cfg.stencil_bits > 0;
-  const bool stencil_on = ops.stencil_test && has_stencil;
-  const bool depth_on = ops.depth_test && cfg.depth_bits > 0;
-  if (depth_on && !stencil_on) {
+  if (p.depth_on && !p.stencil_on) {
     alive -= depth_only(ops.depth_func, ctl.depth_mask, span, begin, end, fb_.depth.data() + row_base,
                         static_cast<std::int64_t>(alive), counters);
-  } else if (stencil_on) {
-    alive -= stencil_and_depth(ops, ctl, span, begin, end, row_base, depth_on, counters);
+  } else if (p.stencil_on) {
+    alive -= stencil_and_depth(ops, ctl, span, begin, end, row_base, p.depth_on, counters);
   }
   counters.fragments_written += alive;
   if (alive == 0) return;
 
   // Blending (§4.1.6), logic op (§4.1.7; it replaces blending), masked write (§4.2.2),
   // once per draw buffer.
-  const bool logic_on = ops.logic_op_enabled;
-  const bool blend_on = ops.blend && !logic_on;
-  int mask_bits = 0;
-  for (int k = 0; k < 4; ++k)
-    if (ctl.color_mask[k]) mask_bits += cfg.color_bits[k];
-  int total_bits = cfg.color_bits[0] + cfg.color_bits[1] + cfg.color_bits[2] + cfg.color_bits[3];
-  const bool same_widths = fragment_bits == cfg.color_bits;
-  // The masked write (§4.2.2) keeps only these channels: the others need no blend.
-  bool written[4];
-  for (int k = 0; k < 4; ++k) written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
   for (ColorBufferId id : *in_.draw_buffers) {
     std::uint16_t* dst = fb_.color[static_cast<int>(id)].rgba.data() + 4 * row_base;
-    counters.color_bits_written += alive * static_cast<std::uint64_t>(mask_bits);
-    if (!blend_on && !logic_on && same_widths) {
+    counters.color_bits_written += alive * static_cast<std::uint64_t>(p.mask_bits);
+    if (!p.blend_on && !p.logic_on && p.same_widths) {
       // Replace: the fragment's codes go straight through the colour mask.
-      const bool all = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
       for (int i = begin; i < end; ++i) {
         if (!live[i]) continue;
         std::uint16_t* d = dst + 4 * i;
         const std::uint16_t* src = span.rgba + 4 * i;
-        if (all) {
+        if (p.all_channels) {
           std::memcpy(d, src, 4 * sizeof(std::uint16_t));
         } else {
           for (int k = 0; k < 4; ++k)
@@ -629,39 +662,17 @@ void FragmentOps::process_row(FragmentSpan& span) {
       }
       continue;
     }
-    if (blend_on && same_widths && !general_path_only &&
-        blend_has_unit_factors(ops.blend_equation, ops.blend_src, ops.blend_dst)) {
-      // Factors 0 and 1 on codes of one width: the same results in integers. A channel
-      // without bits is not written, so it needs no value.
-      UnitFactorBlend b;
-      b.equation = ops.blend_equation;
-      b.src_one = ops.blend_src == GL_ONE;
-      b.dst_one = ops.blend_dst == GL_ONE;
-      for (int k = 0; k < 4; ++k) {
-        b.max[k] = max_code(cfg.color_bits[k]);
-        b.written[k] = written[k];
-      }
-      const std::uint64_t blended = blend_span_unit_factors(b, live, span.rgba, dst, begin, end);
+    if (p.unit_factors) {
+      const std::uint64_t blended = blend_span_unit_factors(p.unit, live, span.rgba, dst, begin, end);
       counters.blend_operations += blended;
-      counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
+      counters.color_bits_read += blended * static_cast<std::uint64_t>(p.total_bits);
       continue;
     }
-    if (blend_on) {
-      RealBlend b;
-      b.equation = ops.blend_equation;
-      b.src_factor = ops.blend_src;
-      b.dst_factor = ops.blend_dst;
-      b.products_rounded = in_.arithmetic && in_.arithmetic->blend_products_rounded;
-      for (int k = 0; k < 4; ++k) {
-        b.constant[k] = ops.blend_color[k];
-        b.src_bits[k] = fragment_bits[k];
-        b.dst_bits[k] = cfg.color_bits[k];
-        b.written[k] = written[k];
-      }
-      const std::uint64_t blended = general_path_only ? blend_span_reals_scalar(b, live, span.rgba, dst, begin, end)
-                                                      : blend_span_reals(b, live, span.rgba, dst, begin, end);
+    if (p.blend_on) {
+      const std::uint64_t blended = general_path_only ? blend_span_reals_scalar(p.real, live, span.rgba, dst, begin, end)
+                                                      : blend_span_reals(p.real, live, span.rgba, dst, begin, end);
       counters.blend_operations += blended;
-      counters.color_bits_read += blended * static_cast<std::uint64_t>(total_bits);
+      counters.color_bits_read += blended * static_cast<std::uint64_t>(p.total_bits);
       continue;
     }
     // Logic op (or a width change): the fragment's codes at the buffer's widths.
@@ -671,13 +682,13 @@ void FragmentOps::process_row(FragmentSpan& span) {
       const std::uint16_t* s = span.rgba + 4 * i;
       std::uint32_t out[4];
       for (int k = 0; k < 4; ++k) out[k] = rescale_code(s[k], fragment_bits[k], cfg.color_bits[k]);
-      if (logic_on) {
+      if (p.logic_on) {
         for (int k = 0; k < 4; ++k) out[k] = logic_op(ops.logic_op, out[k], d[k], max_code(cfg.color_bits[k]));
         ++counters.logic_operations;
-        counters.color_bits_read += static_cast<std::uint64_t>(total_bits);
+        counters.color_bits_read += static_cast<std::uint64_t>(p.total_bits);
       }
       for (int k = 0; k < 4; ++k)
-        if (written[k]) d[k] = static_cast<std::uint16_t>(out[k]);
+        if (p.written[k]) d[k] = static_cast<std::uint16_t>(out[k]);
     }
   }
 }

@@ -23,30 +23,6 @@ struct FragmentOpsInput {
   bool operator==(const FragmentOpsInput&) const = default;
 };
 
-class FragmentOps final : public FragmentSink {
- public:
-  FragmentOps(Framebuffer& fb, Counters*& counters) : fb_(fb), counters_(counters) {}
-  void configure(const FragmentOpsInput& input) { in_ = input; }
-  // A span of several rows is taken row by row.
-  void process(FragmentSpan& span) override;
-  // Testing hook: run every span through the general path (the specialised replace path
-  // is checked against it).
-  static bool general_path_only;
-
- private:
-  void process_row(FragmentSpan& span);
-  void replace_span(const FragmentSpan& span, int begin, int end, Counters& counters);
-  // Return the number of fragments they kill.
-  std::uint64_t depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
-                           std::uint32_t* stored, std::int64_t tested_hint, Counters& counters);
-  std::uint64_t stencil_and_depth(const FragmentOpsState& ops, const FramebufferControlState& ctl,
-                                  const FragmentSpan& span, int begin, int end, std::size_t row_base, bool depth_on,
-                                  Counters& counters);
-  Framebuffer& fb_;
-  Counters*& counters_;
-  FragmentOpsInput in_;
-};
-
 // The comparison functions of AlphaFunc, StencilFunc and DepthFunc (NEVER ... ALWAYS).
 bool compare(GLenum func, std::uint32_t incoming, std::uint32_t stored);
 // §4.1.6 blend of one component: source, destination, factors and constant in [0, 1].
@@ -98,5 +74,42 @@ std::uint64_t blend_span_reals_scalar(const RealBlend& b, const std::uint8_t* li
                                       std::uint16_t* dst, int begin, int end);
 // §4.1.7 logic operation on n-bit codes.
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask);
+
+class FragmentOps final : public FragmentSink {
+ public:
+  FragmentOps(Framebuffer& fb, Counters*& counters) : fb_(fb), counters_(counters) {}
+  void configure(const FragmentOpsInput& input) { in_ = input; }
+  // A span of several rows is taken row by row.
+  void process(FragmentSpan& span) override;
+  // Testing hook: run every span through the general path (the specialised replace path
+  // is checked against it).
+  static bool general_path_only;
+
+ private:
+  // What the operations do, found from the state once per call of process.
+  struct Plan {
+    bool replace_only = false;  // replace_span's case
+    std::uint32_t alpha_ref = 0;
+    bool stencil_on = false, depth_on = false, logic_on = false, blend_on = false;
+    int mask_bits = 0, total_bits = 0;
+    bool same_widths = false, all_channels = false;
+    bool written[4] = {false, false, false, false};
+    bool unit_factors = false;  // blend_span_unit_factors applies
+    UnitFactorBlend unit;
+    RealBlend real;
+  };
+  Plan plan() const;
+  void process_row(const Plan& plan, FragmentSpan& span);
+  void replace_span(const FragmentSpan& span, int begin, int end, Counters& counters);
+  // Return the number of fragments they kill.
+  std::uint64_t depth_only(GLenum func, bool write, const FragmentSpan& span, int begin, int end,
+                           std::uint32_t* stored, std::int64_t tested_hint, Counters& counters);
+  std::uint64_t stencil_and_depth(const FragmentOpsState& ops, const FramebufferControlState& ctl,
+                                  const FragmentSpan& span, int begin, int end, std::size_t row_base, bool depth_on,
+                                  Counters& counters);
+  Framebuffer& fb_;
+  Counters*& counters_;
+  FragmentOpsInput in_;
+};
 
 }  // namespace passim
