@@ -6,12 +6,34 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "pipeline/gl.hpp"
 #include "pipeline/state.hpp"
 
 namespace passim {
+
+// std::allocator, but growing a vector leaves the new elements unset rather than zeroing them:
+// a level that a copy is about to fill wholly (tex_image's `overwritten`) is not written twice
+// (zeroing a 512² RGBA level a frame was 2 % of a frame's time). Every other definition of a
+// level sets every texel explicitly.
+template <class T>
+struct UnsetOnGrowth : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UnsetOnGrowth<U>;
+  };
+  UnsetOnGrowth() = default;
+  template <class U>
+  UnsetOnGrowth(const UnsetOnGrowth<U>&) noexcept {}
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;  // default-initialised: unset
+    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 // Table 3.15-3.16: base format and component widths of an internal format.
 struct InternalFormat {
@@ -30,7 +52,7 @@ struct TextureLevel {
   InternalFormat format;
   // 4 codes per texel: R, G, B, A for colour bases; L in [0] (and A in [3]) for
   // LUMINANCE(_ALPHA); I in [0] for INTENSITY; D in [0] for DEPTH_COMPONENT.
-  std::vector<std::uint32_t> texels;
+  std::vector<std::uint32_t, UnsetOnGrowth<std::uint32_t>> texels;
   bool defined() const { return width > 0 && height > 0; }
   // The texels as the reals k/(2^bits − 1) sampling reads, R G B A per texel with L and I
   // replicated (Table 3.18 sources): made on first sampling, dropped when texels change.

@@ -67,10 +67,7 @@ void texture_coordinates(const Plane tex[4], const PlaneSetup& setup, double cy,
   SpanPlane stq[4];
   for (int k = 0; k < 4; ++k) stq[k] = SpanPlane{tex[k].at_row(cy, setup.y0), tex[k].dfdx};
   texture_coordinates(stq, x0, setup.x0, n, o.texcoords_used, span.s, span.t, span.r);
-  if (!o.lod) {
-    std::fill(span.lambda, span.lambda + n, 0.0);
-    return;
-  }
+  if (!o.lod) return;  // λ = 0, written for the span's rows together (rasterize_triangle)
   for (int i = 0; i < n; ++i) {
     // ∂(a/q)/∂x = (a_x·q − a·q_x)/q², likewise for y; u = W·s, v = H·t;
     // ρ = max(‖(∂u/∂x, ∂v/∂x)‖, ‖(∂u/∂y, ∂v/∂y)‖), λ = log2 ρ clamped to [MIN_LOD, MAX_LOD].
@@ -208,6 +205,7 @@ void rasterize_triangle(const RasterVertex& a, const RasterVertex& b, const Rast
   const auto hand_over = [&] {
     if (stored_rows == 0) return;
     FragmentSpan rows = buffers.span(0, 0, stored);
+    if (options.texcoords && !options.lod) std::fill(rows.lambda, rows.lambda + stored, 0.0);
     if (stored_rows == 1) {
       rows.y = buffers.rows[0].y;
       rows.x0 = buffers.rows[0].x0;
