@@ -432,6 +432,9 @@ class Context {
     int face = 0;  // the colours it takes: 1 for a back face with two-sided lighting (§2.13.1)
   };
   Facing polygon_facing(const RasterVertex* window, std::size_t count, Counters& counters) const;
+  // polygon_facing of the triangle (a, b, c), the same sums in the same order.
+  Facing triangle_facing(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, Counters& counters) const;
+  Facing facing_of_area(double area, Counters& counters) const;
   void note_polygon_warnings(unsigned warnings);
   // A drawn polygon's triangle options: the stage setup's, shading and polygon offset.
   TriangleOptions polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const;

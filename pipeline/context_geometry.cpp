@@ -641,6 +641,19 @@ Context::Facing Context::polygon_facing(const RasterVertex* win, std::size_t cou
     const RasterVertex& b = win[(k + 1) % count];
     area += a.x * b.y - b.x * a.y;
   }
+  return facing_of_area(area, c);
+}
+
+Context::Facing Context::triangle_facing(const RasterVertex& a, const RasterVertex& b, const RasterVertex& v,
+                                         Counters& c) const {
+  double area = 0.0;
+  area += a.x * b.y - b.x * a.y;
+  area += b.x * v.y - v.x * b.y;
+  area += v.x * a.y - a.x * v.y;
+  return facing_of_area(area, c);
+}
+
+Context::Facing Context::facing_of_area(double area, Counters& c) const {
   Facing f;
   f.front = (polygon_.front_face == GL_CCW) ? area > 0.0 : area < 0.0;
   if (polygon_.cull_enabled && (polygon_.cull_face == GL_FRONT_AND_BACK ||
@@ -719,18 +732,21 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
   const std::size_t count = batch.vertices.size(), triangles = count / 3;
   pass.vertices += 3 * triangles;
   count_vertex_processing(pass, 3 * triangles);
-  // The distinct vertices, in chunks on whichever lane asks next: transformed, and those
-  // that can be drawn as they are (see Scratch::BatchVertex) placed in the window and lit.
+  // The distinct vertices, in chunks shared out among the lanes (ChunkClaims: each lane
+  // starts on its own share, as it does with the triangles below, which then read mostly
+  // vertices their own lane made): transformed, and those that can be drawn as they are (see
+  // Scratch::BatchVertex) placed in the window and lit.
   const std::size_t distinct = batch.positions.size();
   std::vector<Scratch::BatchVertex>& vertices = scratch_->batch_vertices;
   if (vertices.size() < distinct) vertices.resize(distinct);
   const ClipPlanes planes = clip_planes_of(transform_);
   const int faces = lighting_.enabled && lighting_.two_side ? 2 : 1;
-  std::atomic<std::size_t> next_vertex{0};
-  run_task([&](int) {
-    constexpr std::size_t kChunkVertices = 64;
-    for (std::size_t first = next_vertex.fetch_add(kChunkVertices); first < distinct;
-         first = next_vertex.fetch_add(kChunkVertices)) {
+  const int lane_count = lanes ? lanes->lanes() : 1;
+  constexpr std::size_t kChunkVertices = 64;
+  ChunkClaims vertex_chunks((distinct + kChunkVertices - 1) / kChunkVertices, lane_count);
+  run_task([&](int lane) {
+    for (std::size_t chunk = vertex_chunks.next(lane); chunk < vertex_chunks.count(); chunk = vertex_chunks.next(lane)) {
+      const std::size_t first = chunk * kChunkVertices;
       for (std::size_t i = first; i < std::min(distinct, first + kChunkVertices); ++i) {
         Scratch::BatchVertex& d = vertices[i];
         d.vertex = transform_vertex(batch.positions[i], batch.inherits[i] ? start_normal : batch.normals[i]);
@@ -745,7 +761,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
       }
     }
   });
-  // Chunks of triangles go to whichever lane asks next (a worker still rasterizing what is
+  // Chunks of triangles go to the lanes the same way (a worker still rasterizing what is
   // queued joins when it is free, or not at all; the task touches nothing rasterization
   // does: it reads state and writes its lane's counters and its chunks); each chunk is
   // assembled the same way by any lane, and the chunks are queued in order.
@@ -763,12 +779,12 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
     share.counters = Counters{};
     share.first_warned[0] = share.first_warned[1] = SIZE_MAX;
   }
-  std::atomic<std::size_t> next_chunk{0};
+  ChunkClaims triangle_chunks(chunks, lane_count);
   run_task([&](int lane) {
     Scratch::BatchLane& share = works[static_cast<std::size_t>(lane)];
     PolygonWork& work = share.work;
     Counters& counted = share.counters;
-    for (std::size_t chunk = next_chunk++; chunk < chunks; chunk = next_chunk++) {
+    for (std::size_t chunk = triangle_chunks.next(lane); chunk < chunks; chunk = triangle_chunks.next(lane)) {
       std::vector<AssembledTriangle>& out = drawn[chunk].triangles;
       std::vector<TriangleRows>& out_rows = drawn[chunk].rows;
       out.clear();
@@ -781,15 +797,17 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
           // What assemble_polygon does with a triangle that is not clipped, from the vertices'
           // window positions and colours found once.
           ++counted.primitives_in;
-          AssembledTriangle drawn_triangle{{d[0]->window, d[1]->window, d[2]->window}, Vec4{}, t};
-          const Facing facing = polygon_facing(drawn_triangle.v, 3, counted);
+          const Facing facing = triangle_facing(d[0]->window, d[1]->window, d[2]->window, counted);
           if (!facing.drawn) continue;
           const auto face = static_cast<std::size_t>(facing.face);
           const bool lit = d[2]->vertex.light_pending;  // the provoking vertex
+          // Made where it is kept (a triangle is 352 bytes: copying one made aside was a third
+          // of the task's time).
+          AssembledTriangle& drawn_triangle =
+              out.emplace_back(d[0]->window, d[1]->window, d[2]->window,
+                               lit ? d[2]->lit[face] : d[2]->vertex.color[face], t);
           for (int k = 0; k < 3; ++k)
             if (lit || face == 1) drawn_triangle.v[k].color = lit ? d[k]->lit[face] : d[k]->vertex.color[face];
-          drawn_triangle.flat_color = lit ? d[2]->lit[face] : d[2]->vertex.color[face];
-          out.push_back(drawn_triangle);
           out_rows.push_back(triangle_rows(drawn_triangle.v[0], drawn_triangle.v[1], drawn_triangle.v[2],
                                            profile_.limits.subpixel_bits, fb_.config.height));
           continue;
@@ -802,7 +820,7 @@ void Context::draw_triangle_batch(const TriangleBatch& batch, const std::vector<
         if (!drawn_here) continue;
         const std::vector<RasterVertex>& win = work.window;
         for (std::size_t k = 1; k + 1 < win.size(); ++k) {
-          out.push_back(AssembledTriangle{{win[0], win[k], win[k + 1]}, work.flat_color, t});
+          out.emplace_back(win[0], win[k], win[k + 1], work.flat_color, t);
           out_rows.push_back(triangle_rows(win[0], win[k], win[k + 1], profile_.limits.subpixel_bits, fb_.config.height));
         }
       }

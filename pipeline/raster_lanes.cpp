@@ -4,6 +4,25 @@
 
 namespace passim {
 
+ChunkClaims::ChunkClaims(std::size_t count, int lanes)
+    : count_(count), lanes_(std::max(lanes, 1)), shares_(std::make_unique<Share[]>(static_cast<std::size_t>(lanes_))) {
+  const auto n = static_cast<std::size_t>(lanes_);
+  for (std::size_t k = 0; k < n; ++k) {
+    shares_[k].next.store(count * k / n, std::memory_order_relaxed);
+    shares_[k].end = count * (k + 1) / n;
+  }
+}
+
+std::size_t ChunkClaims::next(int lane) {
+  for (int k = 0; k < lanes_; ++k) {
+    Share& share = shares_[static_cast<std::size_t>((lane + k) % lanes_)];
+    if (share.next.load(std::memory_order_relaxed) >= share.end) continue;
+    const std::size_t chunk = share.next.fetch_add(1, std::memory_order_relaxed);
+    if (chunk < share.end) return chunk;
+  }
+  return count_;
+}
+
 std::atomic<std::uint64_t> RasterLanes::threaded_runs{0};
 std::atomic<std::uint64_t> RasterLanes::tasks_run{0};
 

@@ -31,9 +31,34 @@ namespace passim {
 // apart, 8 bytes a triangle: a row group holding none of them passes it over without
 // reading it (pass_over_triangle), let alone setting it up.
 struct AssembledTriangle {
+  AssembledTriangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, const Vec4& flat,
+                    std::size_t from)
+      : v{a, b, c}, flat_color(flat), source(from) {}
   RasterVertex v[3];
   Vec4 flat_color;
   std::size_t source;
+};
+
+// Chunks [0, count) shared out among `lanes` lanes of a run_task: lane k claims chunks from
+// its own share, the k-th of `lanes` contiguous shares, in order, then from the shares after
+// it. Two tasks over related ranges (a display-list block's distinct vertices and its
+// triangles, which use vertices numbered near their own position) then give each lane mostly
+// the data it made itself, while a lane that is faster still takes over another's share.
+class ChunkClaims {
+ public:
+  ChunkClaims(std::size_t count, int lanes);
+  // The next chunk for `lane`, or count() when none is left.
+  std::size_t next(int lane);
+  std::size_t count() const { return count_; }
+
+ private:
+  struct alignas(64) Share {
+    std::atomic<std::size_t> next{0};
+    std::size_t end = 0;
+  };
+  std::size_t count_;
+  int lanes_;
+  std::unique_ptr<Share[]> shares_;
 };
 
 class RasterLanes {
