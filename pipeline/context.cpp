@@ -43,7 +43,10 @@ void Context::set_threads(int threads) {
   threads = std::clamp(threads, 1, kMaxThreads);
   if (threads == this->threads()) return;
   scratch_->lanes.reset();
-  if (threads > 1) scratch_->lanes = std::make_unique<RasterLanes>(fb_, threads);
+  if (threads > 1) {
+    scratch_->lanes = std::make_unique<RasterLanes>(fb_, threads);
+    scratch_->lanes->set_row_splitter(rows_on_lanes());
+  }
 }
 
 int Context::threads() const { return scratch_->lanes ? scratch_->lanes->lanes() : 1; }

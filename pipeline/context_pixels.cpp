@@ -347,7 +347,7 @@ void Context::copy_bands_on_lanes(const SourceCodes& source, const RectanglePlac
   TriangleOptions options;
   const FragmentStagesSetup setup = fragment_stages_setup(options);
   primitive_setup_valid_ = false;  // as prepare_fragment_stages would leave it
-  if (setup.texture) TextureStage::make_caches(setup.texture_setup);
+  if (setup.texture) TextureStage::make_caches(setup.texture_setup, rows_on_lanes());
   const RasterFragments raster = raster_fragments(options);
   transfer_bands_on_lanes(source, width, height, 2, band_rows, &setup,
                           [&](LaneStages& lane, const Rgba* band, int first_row, int rows) {
@@ -386,7 +386,7 @@ void Context::copy_pixels_through_table(const SourceCodes& source, const Rectang
     TriangleOptions options;
     const FragmentStagesSetup setup = fragment_stages_setup(options);
     primitive_setup_valid_ = false;  // as prepare_fragment_stages would leave it
-    if (setup.texture) TextureStage::make_caches(setup.texture_setup);
+    if (setup.texture) TextureStage::make_caches(setup.texture_setup, rows_on_lanes());
     const RasterFragments raster = raster_fragments(options);
     bands_on_pixel_lanes(height, kBandRows, &setup, [&](int index, int first, int end) {
       Scratch::PixelLane& lane = *scratch_->pixel_lanes[static_cast<std::size_t>(index)];

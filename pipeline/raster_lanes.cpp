@@ -124,7 +124,7 @@ void RasterLanes::add(const Job& job, std::size_t primitives, const FragmentStag
   if (queued_ == 0) {
     setup_ = setup;
     // The texel caches are made once, here, before any lane samples (they are made lazily).
-    if (setup_.texture) TextureStage::make_caches(setup_.texture_setup);
+    if (setup_.texture) TextureStage::make_caches(setup_.texture_setup, row_splitter_);
   }
   jobs_[queued_++] = job;
   const std::size_t before = primitives_;

@@ -81,6 +81,9 @@ class RasterLanes {
   // pending() is false).
   void triangles(const AssembledTriangle* first, const TriangleRows* rows, std::size_t count,
                  const TriangleOptions& options, const FragmentStagesSetup& setup, Counters& pass);
+  // How make_caches may split its work over the lanes when a queue starts (nothing is
+  // rasterizing then): Context::rows_on_lanes, which runs tasks on these lanes.
+  void set_row_splitter(const RowSplitter* split) { row_splitter_ = split; }
   // Which queue is being filled: it changes when a queue has been run.
   std::uint64_t queue_serial() const { return batch_; }
   // Finish the queue; the lanes' counters are added to `pass`.
@@ -146,6 +149,7 @@ class RasterLanes {
   template <class Ready>
   void wait(std::unique_lock<std::mutex>& lock, std::condition_variable& cv, Ready ready);
 
+  const RowSplitter* row_splitter_ = nullptr;
   // The row group of each stripe of the window (stripe b: group b mod the groups).
   std::vector<std::uint16_t> stripe_groups_;
   std::unique_ptr<Job[]> jobs_;  // fixed storage: the lanes read earlier jobs while later ones are added

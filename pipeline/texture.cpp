@@ -95,11 +95,21 @@ const std::vector<double>& TextureLevel::values() const {
   return decoded;
 }
 
-const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4>& bits) const {
+const TextureLevel::ReplaceCodes& TextureLevel::codes_at(const std::array<int, 4>& bits,
+                                                         const RowSplitter* split) const {
   if (!replace_codes.empty() && replace_codes_bits == bits) return replace_codes;
   // Straight from the texels (the same reals values() would hold, without keeping them).
   replace_codes.resize(texels.size());
   replace_codes_bits = bits;
+  // The texels of rows [first, end) (of height rows of width texels), as `split` chooses.
+  const std::size_t row_values = texels.size() / static_cast<std::size_t>(std::max(height, 1));
+  const auto by_rows = [&](auto&& per_value_range) {
+    const auto rows = [&](int first, int end) {
+      per_value_range(row_values * static_cast<std::size_t>(first), row_values * static_cast<std::size_t>(end));
+    };
+    if (split && height > 1 && row_values * static_cast<std::size_t>(height) == texels.size()) (*split)(height, rows);
+    else per_value_range(std::size_t{0}, texels.size());
+  };
   auto code_of = [&](const double* o, std::size_t k) {
     return static_cast<std::uint16_t>(float_to_fixed(o[k], bits[k]));
   };
@@ -107,11 +117,13 @@ const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4
   const int widest = std::max({f.red, f.green, f.blue, f.alpha, f.luminance, f.intensity, f.depth});
   const std::size_t count = texels.size() / 4, codes = std::size_t{1} << std::min(widest, 32);
   if (widest > 16 || count <= codes) {
-    for (std::size_t p = 0; p < texels.size(); p += 4) {
-      double o[4];
-      decode_texel(format, &texels[p], o);
-      for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = code_of(o, k);
-    }
+    by_rows([&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; p += 4) {
+        double o[4];
+        decode_texel(format, &texels[p], o);
+        for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = code_of(o, k);
+      }
+    });
     return replace_codes;
   }
   // More texels than codes: each output component is a function of one stored component (or
@@ -140,8 +152,10 @@ const std::vector<std::uint16_t>& TextureLevel::codes_at(const std::array<int, 4
       table[c][k] = code_of(o, k);
     }
   }
-  for (std::size_t p = 0; p < texels.size(); p += 4)
-    for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = table[texels[p + source[k]] & (codes - 1)][k];
+  by_rows([&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; p += 4)
+      for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = table[texels[p + source[k]] & (codes - 1)][k];
+  });
   return replace_codes;
 }
 

@@ -12,6 +12,7 @@
 
 #include "pipeline/gl.hpp"
 #include "pipeline/state.hpp"
+#include "stages/row_splitter.hpp"
 
 namespace passim {
 
@@ -60,9 +61,11 @@ struct TextureLevel {
   const std::vector<double>& values() const;
   // The fragment codes each texel's R G B A become at `bits` (float_to_fixed of values()):
   // what REPLACE writes, for the NEAREST fast path. Made on first use, dropped with decoded.
-  mutable std::vector<std::uint16_t> replace_codes;
+  // `split`: the texels converted by ranges of rows as it chooses (every texel alone).
+  using ReplaceCodes = std::vector<std::uint16_t, UnsetOnGrowth<std::uint16_t>>;
+  mutable ReplaceCodes replace_codes;
   mutable std::array<int, 4> replace_codes_bits{};
-  const std::vector<std::uint16_t>& codes_at(const std::array<int, 4>& bits) const;
+  const ReplaceCodes& codes_at(const std::array<int, 4>& bits, const RowSplitter* split = nullptr) const;
   void texels_changed() {
     decoded.clear();
     replace_codes.clear();

@@ -22,12 +22,12 @@ bool nearest_replace(const TextureObject& tex, const TextureLevel& base, GLenum 
 }
 }  // namespace
 
-void TextureStage::make_caches(const TextureStageSetup& setup) {
+void TextureStage::make_caches(const TextureStageSetup& setup, const RowSplitter* split) {
   const TextureObject& tex = *setup.texture;
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
   // The NEAREST fast path reads the codes alone (it never falls back to the general sampler).
   if (nearest_replace(tex, base, setup.env_mode)) {
-    base.codes_at(setup.fragment_bits);
+    base.codes_at(setup.fragment_bits, split);
     return;
   }
   for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();

@@ -33,8 +33,9 @@ class TextureStage final : public FragmentSink {
   void configure(const TextureStageSetup& setup, FragmentSink& next);
   void process(FragmentSpan& span) override;
   // Make the texel caches this setup's sampling reads (TextureLevel::values, codes_at), so
-  // that several threads can then sample the texture without writing to it.
-  static void make_caches(const TextureStageSetup& setup);
+  // that several threads can then sample the texture without writing to it; `split` makes
+  // the replace codes by ranges of rows (TextureLevel::codes_at).
+  static void make_caches(const TextureStageSetup& setup, const RowSplitter* split = nullptr);
   // Tests set this to compare the NEAREST/REPLACE fast path with the general one.
   static bool general_path_only;
   // Fragments the fast paths textured on this thread (for tests; per thread, so that

@@ -130,10 +130,33 @@ TEST(TextureKernels, ReplaceCodesByTableEqualTheDecodedTexels) {
         level.texels[p] = w == 0 ? 0u : static_cast<std::uint32_t>(rng() % (1u << w));
       }
       const std::vector<double>& values = level.values();
-      const std::vector<std::uint16_t>& codes = level.codes_at(bits);
+      const auto& codes = level.codes_at(bits);
       ASSERT_EQ(values.size(), codes.size());
       for (std::size_t p = 0; p < codes.size(); ++p)
         ASSERT_EQ(float_to_fixed(values[p], bits[p % 4]), codes[p]) << internal << " element " << p;
+      // Made by ranges of rows (as the raster lanes make them: here 7 rows at a time, last
+      // range first), the same codes; and likewise for a level of fewer texels than codes,
+      // converted texel by texel.
+      const std::vector<std::uint16_t> whole(codes.begin(), codes.end());
+      const RowSplitter backwards = [](int rows, const std::function<void(int, int)>& body) {
+        for (int first = (rows - 1) / 7 * 7; first >= 0; first -= 7) body(first, std::min(rows, first + 7));
+      };
+      // (The cache's storage is reused unset: poison it, so that codes left from before show.)
+      const auto poison = [&level] {
+        level.replace_codes.assign(level.replace_codes.capacity(), 0xBEEF);
+        level.texels_changed();
+      };
+      poison();
+      const auto& split = level.codes_at(bits, &backwards);
+      ASSERT_TRUE(std::equal(whole.begin(), whole.end(), split.begin(), split.end())) << internal;
+      level.height = 20;  // 5,120 texels
+      level.texels.resize(4u * 256u * 20u);
+      level.texels_changed();
+      const std::vector<std::uint16_t> small_whole(level.codes_at(bits).begin(), level.codes_at(bits).end());
+      poison();
+      const auto& small_split = level.codes_at(bits, &backwards);
+      ASSERT_TRUE(std::equal(small_whole.begin(), small_whole.end(), small_split.begin(), small_split.end()))
+          << internal;
     }
   }
 }
