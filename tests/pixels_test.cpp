@@ -590,13 +590,24 @@ struct PerComponentTransfer {
   }
 };
 
-// A 12-bit window of varied codes (each channel from its own hash of the pixel).
-void fill_varied(Context& ctx, int w, int h) {
-  std::vector<GLushort> image(4 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  for (std::size_t i = 0; i < image.size(); ++i) image[i] = static_cast<GLushort>((i * 2654435761u) >> 13);
-  ctx.glRasterPos2i(0, 0);
-  ctx.glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_SHORT, image.data());
-}
+// A 128x64 12-bit window of varied codes (each channel from its own hash of the pixel), its
+// codes as drawn, and the transfer set, on `threads` threads.
+struct TransferredWindow {
+  Context ctx{test::small_config(128, 64, 12)};
+  std::vector<std::uint16_t> source;
+  PerComponentTransfer transfer;
+  TransferredWindow(int threads, bool map) {
+    ctx.set_threads(threads);
+    test::window_projection(ctx);
+    std::vector<GLushort> image(4 * 128 * 64);
+    for (std::size_t i = 0; i < image.size(); ++i) image[i] = static_cast<GLushort>((i * 2654435761u) >> 13);
+    ctx.glRasterPos2i(0, 0);
+    ctx.glDrawPixels(128, 64, GL_RGBA, GL_UNSIGNED_SHORT, image.data());
+    source = ctx.framebuffer().color[0].rgba;
+    transfer.map = map;
+    transfer.apply(ctx);
+  }
+};
 
 }  // namespace
 
@@ -612,14 +623,10 @@ TEST(Pixels, CopyPixelsThroughAPerComponentTransferMatchesTheSpecFormulas) {
     for (const int threads : {1, 2})
       for (const auto& [width, height, dy] : {std::array<int, 3>{128, 60, 1}, std::array<int, 3>{128, 60, 0},
                                               std::array<int, 3>{9, 7, 0}}) {
-        Context ctx(test::small_config(128, 64, 12));
-        ctx.set_threads(threads);
-        test::window_projection(ctx);
-        fill_varied(ctx, 128, 64);
-        const std::vector<std::uint16_t> source = ctx.framebuffer().color[0].rgba;
-        PerComponentTransfer transfer;
-        transfer.map = map;
-        transfer.apply(ctx);
+        TransferredWindow window(threads, map);
+        Context& ctx = window.ctx;
+        const std::vector<std::uint16_t>& source = window.source;
+        const PerComponentTransfer& transfer = window.transfer;
         const Counters before = ctx.total_counters();
         ctx.glRasterPos2i(0, dy);
         ctx.glCopyPixels(0, 0, width, height, GL_COLOR);
@@ -658,14 +665,10 @@ TEST(Pixels, CopyTexImageThroughAPerComponentTransferMatchesTheSpecFormulas) {
   // and 8x4 (converted per texel), on one thread and two.
   for (const int threads : {1, 2})
     for (const auto& [width, height] : {std::array<int, 2>{128, 64}, std::array<int, 2>{8, 4}}) {
-      Context ctx(test::small_config(128, 64, 12));
-      ctx.set_threads(threads);
-      test::window_projection(ctx);
-      fill_varied(ctx, 128, 64);
-      const std::vector<std::uint16_t> source = ctx.framebuffer().color[0].rgba;
-      PerComponentTransfer transfer;
-      transfer.map = true;
-      transfer.apply(ctx);
+      TransferredWindow window(threads, true);
+      Context& ctx = window.ctx;
+      const std::vector<std::uint16_t>& source = window.source;
+      const PerComponentTransfer& transfer = window.transfer;
       GLuint tex = 0;
       ctx.glGenTextures(1, &tex);
       ctx.glBindTexture(GL_TEXTURE_2D, tex);

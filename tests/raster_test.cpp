@@ -2,7 +2,9 @@
 // polygon offset, against values computed by hand.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <random>
+#include <string>
 
 #include "test_util.hpp"
 
@@ -366,6 +368,28 @@ TEST(QuadDecomposition, ProfileChoosesTheDiagonal) {
   EXPECT_EQ(draw("mesa-llvmpipe", true), fan);
 }
 
+// f(target) for every lane's target of bands of each of `band_rows` rows in cycles of each of
+// `cycles` bands: every first band and every number of bands that fits in the cycle.
+template <class F>
+void for_each_band_layout(std::initializer_list<int> band_rows, std::initializer_list<int> cycles, F f) {
+  for (const int rows : band_rows)
+    for (const int cycle : cycles)
+      for (int first = 0; first < cycle; ++first)
+        for (int count = 1; first + count <= cycle; ++count) {
+          RasterTarget t;
+          t.band_rows = rows;
+          t.band_cycle = cycle;
+          t.band_first = first;
+          t.band_count = count;
+          f(t);
+        }
+}
+
+std::string layout(const RasterTarget& t) {
+  return std::to_string(t.band_rows) + " " + std::to_string(t.band_cycle) + " " + std::to_string(t.band_first) + " " +
+         std::to_string(t.band_count);
+}
+
 TEST(Raster, RowOwnershipWalksAsOwnsRowDecides) {
   // The incremental walk against RasterTarget::owns_row's definition ((row / band_rows) %
   // band_cycle in [band_first, band_first + band_count)), for every band layout the raster
@@ -380,43 +404,28 @@ TEST(Raster, RowOwnershipWalksAsOwnsRowDecides) {
   RowOwnership walk(hand, 0);
   for (int row = 0; row < 40; ++row, walk.next_row())
     EXPECT_EQ(walk.owned(), row >= 8 && row < 32) << row;
-  for (int rows = 1; rows <= 9; ++rows)
-    for (int cycle = 1; cycle <= 16; ++cycle)
-      for (int first = 0; first < cycle; ++first)
-        for (int count = 1; first + count <= cycle; ++count) {
-          RasterTarget t;
-          t.band_rows = rows;
-          t.band_cycle = cycle;
-          t.band_first = first;
-          t.band_count = count;
-          for (std::int64_t start : {0, 1, 7, 8, 37, 500, 1023}) {
-            RowOwnership w(t, start);
-            for (std::int64_t row = start; row < start + 3 * rows * cycle + 5; ++row, w.next_row())
-              ASSERT_EQ(w.owned(), t.owns_row(row)) << rows << " " << cycle << " " << first << " " << count << " row " << row;
-          }
-        }
+  for_each_band_layout({1, 2, 3, 4, 5, 6, 7, 8, 9}, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16},
+                       [](const RasterTarget& t) {
+                         for (std::int64_t start : {0, 1, 7, 8, 37, 500, 1023}) {
+                           RowOwnership w(t, start);
+                           for (std::int64_t row = start; row < start + 3 * t.band_rows * t.band_cycle + 5;
+                                ++row, w.next_row())
+                             ASSERT_EQ(w.owned(), t.owns_row(row)) << layout(t) << " row " << row;
+                         }
+                       });
 }
 
 TEST(Raster, OwnsAnyRowIsWhetherAnyOfTheRowsIsOwned) {
   // owns_any_row counts bands in the cycle rather than asking owns_row row by row: the same
   // answer as asking every row, for every range of rows over a few cycles, for lanes owning
   // one or more bands of cycles of several lengths.
-  for (const int band_rows : {1, 3, 5})
-    for (const int cycle : {2, 3, 4, 8})
-      for (int first = 0; first < cycle; ++first)
-        for (int count = 1; first + count <= cycle; ++count) {
-          RasterTarget t;
-          t.band_rows = band_rows;
-          t.band_cycle = cycle;
-          t.band_first = first;
-          t.band_count = count;
-          const int span = 3 * cycle * band_rows;
-          for (int a = 0; a < span; ++a)
-            for (int b = a; b < span; ++b) {
-              bool any = false;
-              for (int r = a; r <= b && !any; ++r) any = t.owns_row(r);
-              ASSERT_EQ(t.owns_any_row(a, b), any) << band_rows << " " << cycle << " " << first << " " << count << " rows "
-                                                   << a << "-" << b;
-            }
-        }
+  for_each_band_layout({1, 3, 5}, {2, 3, 4, 8}, [](const RasterTarget& t) {
+    const int span = 3 * t.band_cycle * t.band_rows;
+    for (int a = 0; a < span; ++a)
+      for (int b = a; b < span; ++b) {
+        bool any = false;
+        for (int r = a; r <= b && !any; ++r) any = t.owns_row(r);
+        ASSERT_EQ(t.owns_any_row(a, b), any) << layout(t) << " rows " << a << "-" << b;
+      }
+  });
 }
