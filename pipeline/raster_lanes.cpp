@@ -176,10 +176,11 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
           const TriangleRows& rows = job.run_rows[t];
           // Rows lie in [0, height) (empty: first 0, last −1, which the division takes to 0).
           const std::int32_t a = rows.first / kStripeRows, b = rows.last / kStripeRows;
+          const std::size_t in_a = stripe_groups_[static_cast<std::size_t>(a)] == target.band_first;
+          const std::size_t in_b = stripe_groups_[static_cast<std::size_t>(b)] == target.band_first;
+          const std::size_t tall = b - a >= 2;
           drawn[n] = static_cast<std::uint32_t>(t);
-          n += static_cast<std::size_t>((stripe_groups_[static_cast<std::size_t>(a)] == target.band_first) |
-                                        (stripe_groups_[static_cast<std::size_t>(b)] == target.band_first) |
-                                        (b - a >= 2));
+          n += in_a | in_b | tall;
         }
         if (target.counts_primitives()) lane.counters.triangles_rasterized += (end - first) - n;
         for (std::size_t k = 0; k < n; ++k) {
