@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "cli/args.hpp"
-#include "pipeline/apitrace_replay.hpp"
-#include "pipeline/image_io.hpp"
-#include "pipeline/report.hpp"
+#include "trace_io/apitrace_replay.hpp"
+#include "reports/image_io.hpp"
+#include "reports/report.hpp"
 
 namespace passim {
 

@@ -5,9 +5,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "pipeline/cost.hpp"
-#include "pipeline/apitrace_replay.hpp"
-#include "pipeline/trace.hpp"
+#include "reports/cost.hpp"
+#include "trace_io/apitrace_replay.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 namespace {

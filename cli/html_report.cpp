@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "pipeline/cost.hpp"
-#include "pipeline/image_io.hpp"
+#include "reports/cost.hpp"
+#include "reports/image_io.hpp"
 #include "programs/programs.hpp"
 
 namespace fs = std::filesystem;

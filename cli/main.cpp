@@ -16,12 +16,12 @@
 #include <sstream>
 
 #include "pipeline/allocator.hpp"
-#include "pipeline/apitrace_replay.hpp"
+#include "trace_io/apitrace_replay.hpp"
 #include "pipeline/calls.hpp"
-#include "pipeline/image_io.hpp"
+#include "reports/image_io.hpp"
 #include "pipeline/profile.hpp"
-#include "pipeline/report.hpp"
-#include "pipeline/trace.hpp"
+#include "reports/report.hpp"
+#include "trace_io/trace.hpp"
 #include "cli/apitrace_command.hpp"
 #include "cli/args.hpp"
 #include "cli/cost_command.hpp"

@@ -9,9 +9,9 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "pipeline/image_io.hpp"
+#include "reports/image_io.hpp"
 #include "cli/args.hpp"
-#include "pipeline/cost.hpp"
+#include "reports/cost.hpp"
 #include "programs/plot.hpp"
 
 namespace fs = std::filesystem;

@@ -19,7 +19,7 @@
 #include "pipeline/state.hpp"
 #include "pipeline/texture.hpp"
 #include "stages/row_splitter.hpp"
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 #include "stages/fog.hpp"
 #include "stages/pixel_transfer.hpp"
 #include "stages/rasterizer.hpp"

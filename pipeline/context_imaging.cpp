@@ -7,7 +7,7 @@
 #include "pipeline/context.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "pipeline/texture.hpp"
-#include "stages/pixel_pack.hpp"
+#include "client/pixel_pack.hpp"
 
 namespace passim {
 

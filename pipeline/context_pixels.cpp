@@ -11,7 +11,7 @@
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "stages/clipping.hpp"
-#include "stages/pixel_pack.hpp"
+#include "client/pixel_pack.hpp"
 #include "stages/pixel_transfer.hpp"
 
 namespace passim {

@@ -9,8 +9,8 @@
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
-#include "stages/glu_mipmaps.hpp"
-#include "stages/pixel_pack.hpp"
+#include "client/glu_mipmaps.hpp"
+#include "client/pixel_pack.hpp"
 #include "stages/texture_sample.hpp"
 
 namespace passim {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "pipeline/fixed_point.hpp"
-#include "pipeline/image_io.hpp"
+#include "reports/image_io.hpp"
 
 namespace passim {
 

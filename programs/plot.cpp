@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "pipeline/image_io.hpp"
-#include "pipeline/trace.hpp"
+#include "reports/image_io.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/trace.hpp"
+#include "trace_io/trace.hpp"
 #include "programs/scene.hpp"
 
 namespace passim {

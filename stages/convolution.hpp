@@ -8,7 +8,7 @@
 
 #include "pipeline/counters.hpp"
 #include "pipeline/state.hpp"
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 #include "stages/row_splitter.hpp"
 
 namespace passim {

@@ -9,7 +9,7 @@
 #include "pipeline/counters.hpp"
 #include "pipeline/state.hpp"
 #include "stages/convolution.hpp"
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 
 namespace passim {
 

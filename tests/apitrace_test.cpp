@@ -13,10 +13,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "pipeline/apitrace_reader.hpp"
-#include "pipeline/apitrace_replay.hpp"
-#include "pipeline/call_set.hpp"
-#include "pipeline/report.hpp"
+#include "trace_io/apitrace_reader.hpp"
+#include "trace_io/apitrace_replay.hpp"
+#include "trace_io/call_set.hpp"
+#include "reports/report.hpp"
 
 namespace passim {
 namespace {

@@ -2,7 +2,7 @@
 // paper's published frame rates.
 #include <gtest/gtest.h>
 
-#include "pipeline/cost.hpp"
+#include "reports/cost.hpp"
 #include "programs/programs.hpp"
 
 namespace passim {

@@ -6,8 +6,8 @@
 
 #include <sstream>
 
-#include "pipeline/trace.hpp"
-#include "stages/glu_mipmaps.hpp"
+#include "trace_io/trace.hpp"
+#include "client/glu_mipmaps.hpp"
 #include "test_util.hpp"
 
 using namespace passim;
@@ -55,7 +55,7 @@ TEST(GluMipmaps, OneDimensionalHalvesByPairs) {
 }
 
 TEST(GluMipmaps, HalvingRulesPerType) {
-  // Box and pair of each type, by hand from the rules in stages/glu_mipmaps.hpp.
+  // Box and pair of each type, by hand from the rules in client/glu_mipmaps.hpp.
   const std::vector<double> box = {-5, -4, 3, 1};  // 2x2, one component
   EXPECT_EQ(glu_halve_image(box, 2, 2, 1, GL_BYTE)[0], 0.0);    // (-5 + 2)/4 = -3/4 -> 0 (toward zero)
   EXPECT_EQ(glu_halve_image(box, 2, 2, 1, GL_SHORT)[0], 0.0);

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "pipeline/image_io.hpp"
-#include "pipeline/trace.hpp"
+#include "reports/image_io.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 namespace {

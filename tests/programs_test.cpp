@@ -6,7 +6,7 @@
 #include <iostream>
 #include <set>
 
-#include "pipeline/report.hpp"
+#include "reports/report.hpp"
 #include "programs/programs.hpp"
 #include "programs/reference.hpp"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "pipeline/context.hpp"
-#include "pipeline/trace.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim::test {
 

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "pipeline/raster_lanes.hpp"
-#include "pipeline/report.hpp"
+#include "reports/report.hpp"
 #include "programs/programs.hpp"
 #include "test_util.hpp"
 

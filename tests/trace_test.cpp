@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "pipeline/report.hpp"
-#include "pipeline/trace.hpp"
+#include "reports/report.hpp"
+#include "trace_io/trace.hpp"
 #include "test_util.hpp"
 
 using namespace passim;

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "pipeline/apitrace_replay.hpp"
+#include "trace_io/apitrace_replay.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string bytes(reinterpret_cast<const char*>(data), size);

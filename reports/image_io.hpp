@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "pipeline/trace.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 

@@ -1,4 +1,4 @@
-#include "pipeline/apitrace_replay.hpp"
+#include "trace_io/apitrace_replay.hpp"
 
 #include <fmt/format.h>
 
@@ -9,8 +9,8 @@
 #include <map>
 #include <set>
 
-#include "pipeline/apitrace_reader.hpp"
-#include "pipeline/call_runner.hpp"
+#include "trace_io/apitrace_reader.hpp"
+#include "trace_io/call_runner.hpp"
 #include "pipeline/calls.hpp"
 
 namespace passim {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/trace.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 

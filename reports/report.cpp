@@ -1,8 +1,8 @@
-#include "pipeline/report.hpp"
+#include "reports/report.hpp"
 
 #include <fmt/format.h>
 
-#include "pipeline/image_io.hpp"
+#include "reports/image_io.hpp"
 
 namespace passim {
 

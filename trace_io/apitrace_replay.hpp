@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/call_set.hpp"
-#include "pipeline/trace.hpp"
+#include "trace_io/call_set.hpp"
+#include "trace_io/trace.hpp"
 
 namespace passim {
 

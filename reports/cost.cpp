@@ -1,4 +1,4 @@
-#include "pipeline/cost.hpp"
+#include "reports/cost.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 
 #include <cstdint>
 #include <cstring>

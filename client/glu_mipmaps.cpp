@@ -1,4 +1,4 @@
-#include "stages/glu_mipmaps.hpp"
+#include "client/glu_mipmaps.hpp"
 
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "pipeline/image_io.hpp"
+#include "reports/image_io.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>

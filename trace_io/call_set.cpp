@@ -1,4 +1,4 @@
-#include "pipeline/call_set.hpp"
+#include "trace_io/call_set.hpp"
 
 #include <fmt/format.h>
 

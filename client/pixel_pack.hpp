@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 
 namespace passim {
 

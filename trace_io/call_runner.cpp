@@ -1,11 +1,11 @@
-#include "pipeline/call_runner.hpp"
+#include "trace_io/call_runner.hpp"
 
 #include <fmt/format.h>
 
 #include <map>
 
 #include "pipeline/gl.hpp"
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 
 namespace passim {
 

@@ -1,4 +1,4 @@
-#include "pipeline/apitrace_reader.hpp"
+#include "trace_io/apitrace_reader.hpp"
 
 #include <fmt/format.h>
 #include <snappy.h>

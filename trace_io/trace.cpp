@@ -1,5 +1,5 @@
 // .pass traces: parsing, replay and writing (docs/trace-format.md).
-#include "pipeline/trace.hpp"
+#include "trace_io/trace.hpp"
 
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
@@ -14,9 +14,9 @@
 #include <optional>
 #include <sstream>
 
-#include "pipeline/call_runner.hpp"
+#include "trace_io/call_runner.hpp"
 #include "pipeline/fixed_point.hpp"
-#include "stages/pixel_unpack.hpp"
+#include "client/pixel_unpack.hpp"
 
 namespace passim {
 

@@ -1,4 +1,4 @@
-#include "stages/pixel_pack.hpp"
+#include "client/pixel_pack.hpp"
 
 #include <algorithm>
 #include <cmath>
