@@ -206,12 +206,8 @@ int program_command(ProgramCommand& c) {
 
 int info_command(bool calls) {
   if (calls) {
-    for (const CallInfo* c : all_calls()) {
-      std::cout << c->name << "(" << c->signature << ")";
-      if (!c->compiled_into_lists) std::cout << "  [not compiled into lists]";
-      std::cout << "\n";
-    }
-    std::cout << "\nSignature letters: see docs/trace-format.md.\n";
+    for (const CallInfo* c : all_calls()) std::cout << describe_call(*c) << "\n";
+    std::cout << "\nArrays read the elements in brackets (docs/trace-format.md); a trace must give at least those.\n";
     return kOk;
   }
   std::cout << "Machine profiles (select with '@profile NAME' in a trace):\n\n";

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "pipeline/calls.hpp"
+#include "pipeline/checked_size.hpp"
 #include "pipeline/fixed_point.hpp"
 
 namespace passim {
@@ -43,16 +44,15 @@ namespace {
 // the pack modes (as §3.6.4 places unpacked groups).
 template <class F>
 void for_each_packed_group(void* out, int width, int height, int n, int size, const PixelStore& s, F&& f) {
-  const std::size_t l = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
-  const std::size_t k = static_cast<std::size_t>(s.alignment), sz = static_cast<std::size_t>(size);
-  const std::size_t stride = sz >= k ? static_cast<std::size_t>(n) * l * sz
-                                     : k * ((sz * static_cast<std::size_t>(n) * l + k - 1) / k);
+  // The caller's buffer holds image_bytes(...) under the pack modes, so these offsets fit.
+  const std::size_t stride = pixel_row_stride(width, n, size, s).as_size();
+  const std::size_t group = static_cast<std::size_t>(n) * static_cast<std::size_t>(size);
   std::byte* base = static_cast<std::byte*>(out) + static_cast<std::size_t>(s.skip_rows) * stride +
-                    static_cast<std::size_t>(s.skip_pixels) * static_cast<std::size_t>(n * size);
+                    static_cast<std::size_t>(s.skip_pixels) * group;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       f(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x),
-        base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size));
+        base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x) * group);
 }
 
 }  // namespace

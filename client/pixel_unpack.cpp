@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "pipeline/calls.hpp"
+#include "pipeline/checked_size.hpp"
 
 namespace passim {
 
@@ -37,16 +38,13 @@ bool is_pixel_type(GLenum type) {
   }
 }
 
-namespace {
-
-// §3.6.4: the distance in bytes between the starts of consecutive rows.
-std::size_t row_stride(int width, int components, int size, const PixelStore& s) {
-  const std::size_t l = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
-  const std::size_t n = static_cast<std::size_t>(components), sz = static_cast<std::size_t>(size);
-  const std::size_t k = static_cast<std::size_t>(s.alignment);
-  if (sz >= k) return n * l * sz;
-  return k * ((sz * n * l + k - 1) / k);
+CheckedSize pixel_row_stride(int width, int components, int size, const PixelStore& s) {
+  const CheckedSize row = CheckedSize(components) * CheckedSize(s.row_length > 0 ? s.row_length : width) * size;
+  if (size >= s.alignment) return row;
+  return CheckedSize::round_up(row, s.alignment);
 }
+
+namespace {
 
 double element(const std::byte* p, GLenum type, bool swap, bool normalise) {
   std::byte b[8] = {};
@@ -69,46 +67,51 @@ double element(const std::byte* p, GLenum type, bool swap, bool normalise) {
 
 template <class F>
 void for_each_group(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s, F&& f) {
+  // Callers have checked that the data holds image_bytes(...), so these offsets fit.
   const int n = format_components(format), size = type_size(type);
-  const std::size_t stride = row_stride(width, n, size, s);
+  const std::size_t stride = pixel_row_stride(width, n, size, s).as_size();
+  const std::size_t group = static_cast<std::size_t>(n) * static_cast<std::size_t>(size);
   const std::byte* base = static_cast<const std::byte*>(data) + static_cast<std::size_t>(s.skip_rows) * stride +
-                          static_cast<std::size_t>(s.skip_pixels) * static_cast<std::size_t>(n * size);
+                          static_cast<std::size_t>(s.skip_pixels) * group;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      f(x, y, base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x * n * size), n, size);
+      f(x, y, base + static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(x) * group, n, size);
 }
 
 }  // namespace
 
 namespace {
-std::size_t bitmap_row_bytes(int width, const PixelStore& s) {
-  const std::size_t bits = static_cast<std::size_t>(s.row_length > 0 ? s.row_length : width);
-  const std::size_t k = static_cast<std::size_t>(s.alignment);
-  return k * (((bits + 7) / 8 + k - 1) / k);
+// ⌈l / 8⌉ bytes padded to the alignment (§3.6.4, type BITMAP).
+CheckedSize bitmap_row_bytes(int width, const PixelStore& s) {
+  const CheckedSize bits = s.row_length > 0 ? s.row_length : width;
+  return CheckedSize::round_up(CheckedSize((bits.value() + 7) / 8), s.alignment);
 }
 }  // namespace
 
-std::size_t bitmap_bytes(int width, int height, const PixelStore& s) {
+std::uint64_t bitmap_bytes(int width, int height, const PixelStore& s) {
   if (width <= 0 || height <= 0) return 0;
-  const std::size_t last_bit = static_cast<std::size_t>(s.skip_pixels) + static_cast<std::size_t>(width) - 1;
-  return static_cast<std::size_t>(s.skip_rows + height - 1) * bitmap_row_bytes(width, s) + last_bit / 8 + 1;
+  const CheckedSize last_bit = CheckedSize(s.skip_pixels) + width - 1;
+  return ((CheckedSize(s.skip_rows) + height - 1) * bitmap_row_bytes(width, s) + last_bit.value() / 8 + 1).value();
 }
 
 bool bitmap_bit(const void* data, int width, int x, int y, const PixelStore& s) {
+  // Callers have checked that the data holds bitmap_bytes(...), so these offsets fit.
   const std::size_t bit = static_cast<std::size_t>(s.skip_pixels) + static_cast<std::size_t>(x);
   const auto* row = static_cast<const std::uint8_t*>(data) +
-                    static_cast<std::size_t>(s.skip_rows + y) * bitmap_row_bytes(width, s);
+                    (static_cast<std::size_t>(s.skip_rows) + static_cast<std::size_t>(y)) *
+                        bitmap_row_bytes(width, s).as_size();
   const std::uint8_t byte = row[bit / 8];
   const unsigned shift = s.lsb_first ? static_cast<unsigned>(bit % 8) : 7u - static_cast<unsigned>(bit % 8);
   return (byte >> shift) & 1u;
 }
 
-std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& s) {
+std::uint64_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& s) {
   if (width <= 0 || height <= 0) return 0;
   const int n = format_components(format), size = type_size(type);
-  const std::size_t stride = row_stride(width, n, size, s);
-  return static_cast<std::size_t>(s.skip_rows + height - 1) * stride +
-         static_cast<std::size_t>(s.skip_pixels + width) * static_cast<std::size_t>(n * size);
+  // The last row's start, then the groups up to the end of its last pixel.
+  return ((CheckedSize(s.skip_rows) + height - 1) * pixel_row_stride(width, n, size, s) +
+          (CheckedSize(s.skip_pixels) + width) * n * size)
+      .value();
 }
 
 void unpack_rgba(const void* data, int width, int height, GLenum format, GLenum type, const PixelStore& s,

@@ -3,8 +3,10 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "pipeline/checked_size.hpp"
 #include "pipeline/gl.hpp"
 
 namespace passim {
@@ -23,7 +25,8 @@ using Rgba = std::array<double, 4>;
 
 // A bitmap (§3.6.4, type BITMAP: one bit per pixel; rows of ⌈row length / 8⌉ bytes padded to
 // the alignment; SKIP_PIXELS counts bits; UNPACK_LSB_FIRST picks the bit order in a byte).
-std::size_t bitmap_bytes(int width, int height, const PixelStore& s);
+// The byte counts are computed in checked 64-bit arithmetic (SizeOverflow when they overflow).
+std::uint64_t bitmap_bytes(int width, int height, const PixelStore& s);
 bool bitmap_bit(const void* data, int width, int x, int y, const PixelStore& s);
 
 // Components of a pixel format (Table 3.5); 0 for a name that is not one.
@@ -32,8 +35,12 @@ int format_components(GLenum format);
 bool is_color_pixel_format(GLenum format);
 // The non-packed pixel types of Table 3.4 (BITMAP and the packed types are not modelled).
 bool is_pixel_type(GLenum type);
+// §3.6.4: the distance in bytes between the starts of consecutive rows of groups of
+// `components` elements of `size` bytes, k·⌈n·l·s / k⌉ (n·l·s when s ≥ k), l the row length
+// or width. Checked 64-bit arithmetic (SizeOverflow): the modes come from input.
+CheckedSize pixel_row_stride(int width, int components, int size, const PixelStore& store);
 // The bytes an image of width x height reads, counting from the data pointer (§3.6.4).
-std::size_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& store);
+std::uint64_t image_bytes(int width, int height, GLenum format, GLenum type, const PixelStore& store);
 
 // Unpacks width x height groups into RGBA (§3.6.4): Table 2.6 conversion (integers to
 // [0,1] or [-1,1]); LUMINANCE to R = G = B = L; missing R, G, B are 0 and A is 1.

@@ -4,12 +4,16 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <unordered_map>
 
+#include "client/pixel_unpack.hpp"
+#include "pipeline/checked_size.hpp"
 #include "pipeline/context.hpp"
 
 namespace passim {
@@ -21,7 +25,7 @@ T* output_scratch() {
   if constexpr (std::is_void_v<T>) {
     return output_scratch<std::byte>();
   } else {
-    static thread_local T buffer[65536];
+    static thread_local T buffer[kOutputScratchElements];
     return buffer;
   }
 }
@@ -56,280 +60,341 @@ struct Invoker<MF> {
 
 enum Flags : unsigned {
   kNone = 0,
-  kNotCompiled = 1,    // §5.4: executed immediately, never put in a list
-  kInBeginEnd = 2,     // §2.6.3: allowed between Begin and End
-  kQuery = 4,          // output arguments
-  kRecordAtDraw = 8,   // pointer set-up: recorded with the data at each draw
+  kNotCompiled = 1,  // §5.4: executed immediately, never put in a list
+  kInBeginEnd = 2,   // §2.6.3: allowed between Begin and End
+  kQuery = 4,        // output arguments
+  kQueues = 8,       // queues primitives and changes no state the fragment stages read
+  kDraws = 16,       // draws: primitives, pixels, clears, accumulation
+  kReadsArrays = 32,  // reads the enabled client arrays (§2.8): recorded and compiled with their data
 };
 
-std::vector<CallInfo::Param> parse_signature(std::string_view sig) {
+[[noreturn]] void bad_row(std::string_view name, const std::string& why) {
+  std::fprintf(stderr, "passim: internal error: call-table row %.*s: %s\n", static_cast<int>(name.size()),
+               name.data(), why.c_str());
+  std::abort();
+}
+
+// Parses "kind[rule]:name" tokens (see calls.hpp); names in rules resolve to argument indices.
+std::vector<CallInfo::Param> parse_signature(std::string_view call, std::string_view sig) {
   std::vector<CallInfo::Param> params;
-  for (std::size_t i = 0; i < sig.size(); ++i) {
-    CallInfo::Param p{sig[i], 0, 0};
-    if (std::strchr("FDIUBVH", sig[i])) {
-      char next = i + 1 < sig.size() ? sig[i + 1] : 0;
-      if (next == 'p' || next == '*') {
-        p.count_rule = next;
-        ++i;
-      } else {
-        p.count_rule = 'n';
-        while (i + 1 < sig.size() && sig[i + 1] >= '0' && sig[i + 1] <= '9') {
-          p.fixed_count = p.fixed_count * 10 + (sig[i + 1] - '0');
-          ++i;
-        }
-      }
+  std::vector<std::pair<std::size_t, std::string_view>> rules;  // parameter, rule text
+  std::size_t i = 0;
+  while (i < sig.size()) {
+    std::size_t end = i;
+    for (int depth = 0; end < sig.size() && (depth > 0 || sig[end] != ' '); ++end)
+      depth += sig[end] == '{' ? 1 : sig[end] == '}' ? -1 : 0;
+    const std::string_view token = sig.substr(i, end - i);
+    i = end + 1;
+    const std::size_t colon = token.rfind(':');
+    if (colon == std::string_view::npos || colon == 0) bad_row(call, fmt::format("token '{}' has no name", token));
+    CallInfo::Param p;
+    p.kind = token[0];
+    p.name = token.substr(colon + 1);
+    const std::string_view rule = token.substr(1, colon - 1);
+    if (std::strchr("FDIUBHVO", p.kind)) {
+      if (rule.empty() && p.kind != 'O') bad_row(call, fmt::format("array '{}' has no length rule", p.name));
+      p.length = Length::Any;  // refined below, once every name is known
+      rules.emplace_back(params.size(), rule);
+    } else if (!rule.empty() || !std::strchr("emnzbiucfdsxy", p.kind)) {
+      bad_row(call, fmt::format("token '{}' is not a scalar or an array", token));
     }
     params.push_back(p);
+  }
+  auto index_of = [&](std::string_view name) {
+    for (std::size_t k = 0; k < params.size(); ++k)
+      if (params[k].name == name) return static_cast<int>(k);
+    bad_row(call, fmt::format("a length rule names '{}', which is not a parameter", name));
+  };
+  for (auto& [k, rule] : rules) {
+    CallInfo::Param& p = params[k];
+    for (std::size_t j = 0; j < k; ++j)
+      if (params[j].name == "type") p.type_arg = static_cast<int>(j);
+    if (rule.empty() || rule == "*") {
+      p.length = Length::Any;
+    } else if (rule == "p") {
+      p.length = Length::ByPname;
+      p.count_arg = index_of("pname");
+    } else if (rule.front() == '[' && rule.back() == ']') {
+      p.length = Length::ByArgument;
+      p.count_arg = index_of(rule.substr(1, rule.size() - 2));
+    } else if (rule.front() == '{' && rule.back() == '}') {
+      std::vector<std::string_view> words;
+      std::string_view inner = rule.substr(1, rule.size() - 2);
+      for (std::size_t a = 0; a < inner.size();) {
+        std::size_t b = inner.find(' ', a);
+        if (b == std::string_view::npos) b = inner.size();
+        if (b > a) words.push_back(inner.substr(a, b - a));
+        a = b + 1;
+      }
+      if (words.size() < 2 || words.size() > 4 || (words[0] != "image" && words[0] != "bitmap"))
+        bad_row(call, fmt::format("rule '{}' is not {{image w [h [d]]}} or {{bitmap w h}}", rule));
+      p.length = words[0] == "image" ? Length::Image : Length::Bitmap;
+      for (std::size_t d = 1; d < words.size(); ++d) p.dims[d - 1] = index_of(words[d]);
+      if (p.length == Length::Image) {
+        p.format_arg = index_of("format");
+        p.type_arg = index_of("type");
+      }
+    } else {
+      int n = 0;
+      for (char c : rule) {
+        if (c < '0' || c > '9') bad_row(call, fmt::format("length rule '{}' is not known", rule));
+        n = n * 10 + (c - '0');
+      }
+      p.length = Length::Fixed;
+      p.fixed_count = n;
+    }
+    if (p.kind == 'V' && p.type_arg < 0) bad_row(call, "a void* parameter needs a parameter named 'type' before it");
   }
   return params;
 }
 
 template <auto MF>
-CallInfo row(std::string_view name, std::string_view sig, unsigned flags) {
+CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum client_array = 0) {
   CallInfo info;
   info.name = name;
   info.signature = sig;
-  info.compiled_into_lists = !(flags & (kNotCompiled | kQuery));
+  info.compiled_into_lists = !(flags & (kNotCompiled | kQuery)) && client_array == 0;
   info.allowed_in_begin_end = flags & kInBeginEnd;
-  info.keeps_raster_queue = info.allowed_in_begin_end || name == "glBegin" || name == "glDrawArrays" ||
-                            name == "glDrawElements" || name.starts_with("glRect");
+  info.keeps_raster_queue = info.allowed_in_begin_end || (flags & kQueues);
+  info.draws = flags & kDraws;
+  info.reads_client_arrays = flags & kReadsArrays;
   info.query = flags & kQuery;
-  info.recorded_at_draw = flags & kRecordAtDraw;
+  info.client_array = client_array;
   info.invoke = &Invoker<MF>::call;
   info.returns_value = Invoker<MF>::returns;
-  info.params = parse_signature(sig);
-  if (info.params.size() != Invoker<MF>::arity) {
-    std::fprintf(stderr, "passim: internal error: signature of %.*s has %zu letters for %zu parameters\n",
-                 static_cast<int>(name.size()), name.data(), info.params.size(), Invoker<MF>::arity);
-    std::abort();
-  }
+  info.params = parse_signature(name, sig);
+  if (info.params.size() != Invoker<MF>::arity)
+    bad_row(name, fmt::format("the signature has {} parameters, the entry point {}", info.params.size(),
+                              Invoker<MF>::arity));
   return info;
 }
 
 #define ROW(fn, sig, flags) row<&Context::fn>(#fn, sig, flags)
+// A client-array pointer call (§2.8): executed at once, recorded with its data at each draw.
+#define ARRAY_ROW(fn, sig, array) row<&Context::fn>(#fn, sig, kNotCompiled, array)
 
 const std::vector<CallInfo>& table() {
   static const std::vector<CallInfo> rows = {
       // errors and state
       ROW(glGetError, "", kNotCompiled),
-      ROW(glEnable, "e", kNone),
-      ROW(glDisable, "e", kNone),
-      ROW(glIsEnabled, "e", kNotCompiled),
-      ROW(glGetIntegerv, "eO", kQuery),
-      ROW(glGetFloatv, "eO", kQuery),
-      ROW(glGetDoublev, "eO", kQuery),
-      ROW(glGetBooleanv, "eO", kQuery),
-      ROW(glHint, "ee", kNone),
+      ROW(glEnable, "e:cap", kNone),
+      ROW(glDisable, "e:cap", kNone),
+      ROW(glIsEnabled, "e:cap", kNotCompiled),
+      ROW(glGetIntegerv, "e:pname Op:params", kQuery),
+      ROW(glGetFloatv, "e:pname Op:params", kQuery),
+      ROW(glGetDoublev, "e:pname Op:params", kQuery),
+      ROW(glGetBooleanv, "e:pname Op:params", kQuery),
+      ROW(glHint, "e:target e:mode", kNone),
       ROW(glFlush, "", kNotCompiled),
       ROW(glFinish, "", kNotCompiled),
       // framebuffer control
-      ROW(glClear, "b", kNone),
-      ROW(glClearColor, "ffff", kNone),
-      ROW(glClearDepth, "d", kNone),
-      ROW(glClearStencil, "i", kNone),
-      ROW(glClearAccum, "ffff", kNone),
-      ROW(glAccum, "ef", kNone),
-      ROW(glColorMask, "zzzz", kNone),
-      ROW(glDepthMask, "z", kNone),
-      ROW(glStencilMask, "u", kNone),
-      ROW(glDrawBuffer, "n", kNone),
-      ROW(glReadBuffer, "n", kNone),
+      ROW(glClear, "b:mask", kDraws),
+      ROW(glClearColor, "f:red f:green f:blue f:alpha", kNone),
+      ROW(glClearDepth, "d:depth", kNone),
+      ROW(glClearStencil, "i:s", kNone),
+      ROW(glClearAccum, "f:red f:green f:blue f:alpha", kNone),
+      ROW(glAccum, "e:op f:value", kDraws),
+      ROW(glColorMask, "z:red z:green z:blue z:alpha", kNone),
+      ROW(glDepthMask, "z:flag", kNone),
+      ROW(glStencilMask, "u:mask", kNone),
+      ROW(glDrawBuffer, "n:mode", kNone),
+      ROW(glReadBuffer, "n:mode", kNone),
       // per-fragment operations
-      ROW(glScissor, "iiii", kNone),
-      ROW(glAlphaFunc, "ef", kNone),
-      ROW(glStencilFunc, "eiu", kNone),
-      ROW(glStencilOp, "eee", kNone),
-      ROW(glDepthFunc, "e", kNone),
-      ROW(glBlendFunc, "ee", kNone),
-      ROW(glBlendEquation, "e", kNone),
-      ROW(glBlendColor, "ffff", kNone),
-      ROW(glLogicOp, "e", kNone),
+      ROW(glScissor, "i:x i:y i:width i:height", kNone),
+      ROW(glAlphaFunc, "e:func f:ref", kNone),
+      ROW(glStencilFunc, "e:func i:ref u:mask", kNone),
+      ROW(glStencilOp, "e:fail e:zfail e:zpass", kNone),
+      ROW(glDepthFunc, "e:func", kNone),
+      ROW(glBlendFunc, "e:sfactor e:dfactor", kNone),
+      ROW(glBlendEquation, "e:mode", kNone),
+      ROW(glBlendColor, "f:red f:green f:blue f:alpha", kNone),
+      ROW(glLogicOp, "e:opcode", kNone),
       // transformation
-      ROW(glViewport, "iiii", kNone),
-      ROW(glDepthRange, "dd", kNone),
-      ROW(glMatrixMode, "e", kNone),
+      ROW(glViewport, "i:x i:y i:width i:height", kNone),
+      ROW(glDepthRange, "d:near_val d:far_val", kNone),
+      ROW(glMatrixMode, "e:mode", kNone),
       ROW(glLoadIdentity, "", kNone),
-      ROW(glLoadMatrixf, "F16", kNone),
-      ROW(glLoadMatrixd, "D16", kNone),
-      ROW(glMultMatrixf, "F16", kNone),
-      ROW(glMultMatrixd, "D16", kNone),
+      ROW(glLoadMatrixf, "F16:m", kNone),
+      ROW(glLoadMatrixd, "D16:m", kNone),
+      ROW(glMultMatrixf, "F16:m", kNone),
+      ROW(glMultMatrixd, "D16:m", kNone),
       ROW(glPushMatrix, "", kNone),
       ROW(glPopMatrix, "", kNone),
-      ROW(glTranslatef, "fff", kNone),
-      ROW(glTranslated, "ddd", kNone),
-      ROW(glRotatef, "ffff", kNone),
-      ROW(glRotated, "dddd", kNone),
-      ROW(glScalef, "fff", kNone),
-      ROW(glScaled, "ddd", kNone),
-      ROW(glFrustum, "dddddd", kNone),
-      ROW(glOrtho, "dddddd", kNone),
-      ROW(glClipPlane, "eD4", kNone),
-      ROW(gluPerspective, "dddd", kNone),
-      ROW(gluLookAt, "ddddddddd", kNone),
+      ROW(glTranslatef, "f:x f:y f:z", kNone),
+      ROW(glTranslated, "d:x d:y d:z", kNone),
+      ROW(glRotatef, "f:angle f:x f:y f:z", kNone),
+      ROW(glRotated, "d:angle d:x d:y d:z", kNone),
+      ROW(glScalef, "f:x f:y f:z", kNone),
+      ROW(glScaled, "d:x d:y d:z", kNone),
+      ROW(glFrustum, "d:left d:right d:bottom d:top d:near_val d:far_val", kNone),
+      ROW(glOrtho, "d:left d:right d:bottom d:top d:near_val d:far_val", kNone),
+      ROW(glClipPlane, "e:plane D4:equation", kNone),
+      ROW(gluPerspective, "d:fovy d:aspect d:zNear d:zFar", kNone),
+      ROW(gluLookAt, "d:eyeX d:eyeY d:eyeZ d:centerX d:centerY d:centerZ d:upX d:upY d:upZ", kNone),
       // vertices
-      ROW(glRectf, "ffff", kNone),
-      ROW(glRectd, "dddd", kNone),
-      ROW(glRecti, "iiii", kNone),
-      ROW(glBegin, "m", kNone),
-      ROW(glEnd, "", kInBeginEnd),
-      ROW(glVertex2f, "ff", kInBeginEnd),
-      ROW(glVertex3f, "fff", kInBeginEnd),
-      ROW(glVertex4f, "ffff", kInBeginEnd),
-      ROW(glVertex2d, "dd", kInBeginEnd),
-      ROW(glVertex3d, "ddd", kInBeginEnd),
-      ROW(glVertex4d, "dddd", kInBeginEnd),
-      ROW(glVertex2i, "ii", kInBeginEnd),
-      ROW(glVertex3i, "iii", kInBeginEnd),
-      ROW(glVertex2fv, "F2", kInBeginEnd),
-      ROW(glVertex2dv, "D2", kInBeginEnd),
-      ROW(glVertex3dv, "D3", kInBeginEnd),
-      ROW(glVertex2iv, "I2", kInBeginEnd),
-      ROW(glVertex3iv, "I3", kInBeginEnd),
-      ROW(glNormal3dv, "D3", kInBeginEnd),
-      ROW(glColor3ubv, "B3", kInBeginEnd),
-      ROW(glColor4ubv, "B4", kInBeginEnd),
-      ROW(glColor3dv, "D3", kInBeginEnd),
-      ROW(glColor4dv, "D4", kInBeginEnd),
-      ROW(glTexCoord2d, "dd", kInBeginEnd),
-      ROW(glTexCoord2i, "ii", kInBeginEnd),
-      ROW(glTexCoord2dv, "D2", kInBeginEnd),
-      ROW(glTexCoord3fv, "F3", kInBeginEnd),
-      ROW(glTexCoord4fv, "F4", kInBeginEnd),
-      ROW(glVertex3fv, "F3", kInBeginEnd),
-      ROW(glVertex4fv, "F4", kInBeginEnd),
-      ROW(glNormal3f, "fff", kInBeginEnd),
-      ROW(glNormal3d, "ddd", kInBeginEnd),
-      ROW(glNormal3fv, "F3", kInBeginEnd),
-      ROW(glColor3f, "fff", kInBeginEnd),
-      ROW(glColor4f, "ffff", kInBeginEnd),
-      ROW(glColor3d, "ddd", kInBeginEnd),
-      ROW(glColor4d, "dddd", kInBeginEnd),
-      ROW(glColor3ub, "ccc", kInBeginEnd),
-      ROW(glColor4ub, "cccc", kInBeginEnd),
-      ROW(glColor3fv, "F3", kInBeginEnd),
-      ROW(glColor4fv, "F4", kInBeginEnd),
-      ROW(glTexCoord1f, "f", kInBeginEnd),
-      ROW(glTexCoord2f, "ff", kInBeginEnd),
-      ROW(glTexCoord3f, "fff", kInBeginEnd),
-      ROW(glTexCoord4f, "ffff", kInBeginEnd),
-      ROW(glTexCoord4d, "dddd", kInBeginEnd),
-      ROW(glTexCoord2fv, "F2", kInBeginEnd),
+      ROW(glRectf, "f:x1 f:y1 f:x2 f:y2", kQueues | kDraws),
+      ROW(glRectd, "d:x1 d:y1 d:x2 d:y2", kQueues | kDraws),
+      ROW(glRecti, "i:x1 i:y1 i:x2 i:y2", kQueues | kDraws),
+      ROW(glBegin, "m:mode", kQueues),
+      ROW(glEnd, "", kInBeginEnd | kDraws),
+      ROW(glVertex2f, "f:x f:y", kInBeginEnd),
+      ROW(glVertex3f, "f:x f:y f:z", kInBeginEnd),
+      ROW(glVertex4f, "f:x f:y f:z f:w", kInBeginEnd),
+      ROW(glVertex2d, "d:x d:y", kInBeginEnd),
+      ROW(glVertex3d, "d:x d:y d:z", kInBeginEnd),
+      ROW(glVertex4d, "d:x d:y d:z d:w", kInBeginEnd),
+      ROW(glVertex2i, "i:x i:y", kInBeginEnd),
+      ROW(glVertex3i, "i:x i:y i:z", kInBeginEnd),
+      ROW(glVertex2fv, "F2:v", kInBeginEnd),
+      ROW(glVertex2dv, "D2:v", kInBeginEnd),
+      ROW(glVertex3dv, "D3:v", kInBeginEnd),
+      ROW(glVertex2iv, "I2:v", kInBeginEnd),
+      ROW(glVertex3iv, "I3:v", kInBeginEnd),
+      ROW(glNormal3dv, "D3:v", kInBeginEnd),
+      ROW(glColor3ubv, "B3:v", kInBeginEnd),
+      ROW(glColor4ubv, "B4:v", kInBeginEnd),
+      ROW(glColor3dv, "D3:v", kInBeginEnd),
+      ROW(glColor4dv, "D4:v", kInBeginEnd),
+      ROW(glTexCoord2d, "d:s d:t", kInBeginEnd),
+      ROW(glTexCoord2i, "i:s i:t", kInBeginEnd),
+      ROW(glTexCoord2dv, "D2:v", kInBeginEnd),
+      ROW(glTexCoord3fv, "F3:v", kInBeginEnd),
+      ROW(glTexCoord4fv, "F4:v", kInBeginEnd),
+      ROW(glVertex3fv, "F3:v", kInBeginEnd),
+      ROW(glVertex4fv, "F4:v", kInBeginEnd),
+      ROW(glNormal3f, "f:nx f:ny f:nz", kInBeginEnd),
+      ROW(glNormal3d, "d:nx d:ny d:nz", kInBeginEnd),
+      ROW(glNormal3fv, "F3:v", kInBeginEnd),
+      ROW(glColor3f, "f:red f:green f:blue", kInBeginEnd),
+      ROW(glColor4f, "f:red f:green f:blue f:alpha", kInBeginEnd),
+      ROW(glColor3d, "d:red d:green d:blue", kInBeginEnd),
+      ROW(glColor4d, "d:red d:green d:blue d:alpha", kInBeginEnd),
+      ROW(glColor3ub, "c:red c:green c:blue", kInBeginEnd),
+      ROW(glColor4ub, "c:red c:green c:blue c:alpha", kInBeginEnd),
+      ROW(glColor3fv, "F3:v", kInBeginEnd),
+      ROW(glColor4fv, "F4:v", kInBeginEnd),
+      ROW(glTexCoord1f, "f:s", kInBeginEnd),
+      ROW(glTexCoord2f, "f:s f:t", kInBeginEnd),
+      ROW(glTexCoord3f, "f:s f:t f:r", kInBeginEnd),
+      ROW(glTexCoord4f, "f:s f:t f:r f:q", kInBeginEnd),
+      ROW(glTexCoord4d, "d:s d:t d:r d:q", kInBeginEnd),
+      ROW(glTexCoord2fv, "F2:v", kInBeginEnd),
       // vertex arrays
-      ROW(glEnableClientState, "e", kNotCompiled),
-      ROW(glDisableClientState, "e", kNotCompiled),
-      ROW(glVertexPointer, "ieiV*", kNotCompiled | kRecordAtDraw),
-      ROW(glNormalPointer, "eiV*", kNotCompiled | kRecordAtDraw),
-      ROW(glColorPointer, "ieiV*", kNotCompiled | kRecordAtDraw),
-      ROW(glTexCoordPointer, "ieiV*", kNotCompiled | kRecordAtDraw),
-      ROW(glArrayElement, "i", kInBeginEnd),
-      ROW(glDrawArrays, "mii", kNone),
-      ROW(glDrawElements, "mieV*", kNone),
+      ROW(glEnableClientState, "e:cap", kNotCompiled),
+      ROW(glDisableClientState, "e:cap", kNotCompiled),
+      ARRAY_ROW(glVertexPointer, "i:size e:type i:stride V*:pointer", GL_VERTEX_ARRAY),
+      ARRAY_ROW(glNormalPointer, "e:type i:stride V*:pointer", GL_NORMAL_ARRAY),
+      ARRAY_ROW(glColorPointer, "i:size e:type i:stride V*:pointer", GL_COLOR_ARRAY),
+      ARRAY_ROW(glTexCoordPointer, "i:size e:type i:stride V*:pointer", GL_TEXTURE_COORD_ARRAY),
+      ROW(glArrayElement, "i:i", kInBeginEnd | kReadsArrays),
+      ROW(glDrawArrays, "m:mode i:first i:count", kQueues | kDraws | kReadsArrays),
+      ROW(glDrawElements, "m:mode i:count e:type V[count]:indices", kQueues | kDraws | kReadsArrays),
       // display lists
-      ROW(glNewList, "ue", kNotCompiled),
+      ROW(glNewList, "u:list e:mode", kNotCompiled),
       ROW(glEndList, "", kNotCompiled),
-      ROW(glCallList, "u", kInBeginEnd),
-      ROW(glCallLists, "ieV*", kInBeginEnd),
-      ROW(glGenLists, "i", kNotCompiled),
-      ROW(glDeleteLists, "ui", kNotCompiled),
-      ROW(glIsList, "u", kNotCompiled),
-      ROW(glListBase, "u", kNone),
+      ROW(glCallList, "u:list", kInBeginEnd | kDraws),
+      ROW(glCallLists, "i:n e:type V[n]:lists", kInBeginEnd | kDraws),
+      ROW(glGenLists, "i:range", kNotCompiled),
+      ROW(glDeleteLists, "u:list i:range", kNotCompiled),
+      ROW(glIsList, "u:list", kNotCompiled),
+      ROW(glListBase, "u:base", kNone),
       // lighting
-      ROW(glShadeModel, "e", kNone),
-      ROW(glLightf, "eef", kNone),
-      ROW(glLighti, "eei", kNone),
-      ROW(glLightfv, "eeFp", kNone),
-      ROW(glLightModelf, "ey", kNone),
-      ROW(glLightModeli, "ex", kNone),
-      ROW(glLightModelfv, "eFp", kNone),
-      ROW(glMaterialf, "eef", kInBeginEnd),
-      ROW(glMaterialfv, "eeFp", kInBeginEnd),
-      ROW(glColorMaterial, "ee", kNone),
+      ROW(glShadeModel, "e:mode", kNone),
+      ROW(glLightf, "e:light e:pname f:param", kNone),
+      ROW(glLighti, "e:light e:pname i:param", kNone),
+      ROW(glLightfv, "e:light e:pname Fp:params", kNone),
+      ROW(glLightModelf, "e:pname y:param", kNone),
+      ROW(glLightModeli, "e:pname x:param", kNone),
+      ROW(glLightModelfv, "e:pname Fp:params", kNone),
+      ROW(glMaterialf, "e:face e:pname f:param", kInBeginEnd),
+      ROW(glMaterialfv, "e:face e:pname Fp:params", kInBeginEnd),
+      ROW(glColorMaterial, "e:face e:mode", kNone),
       // rasterization
-      ROW(glCullFace, "e", kNone),
-      ROW(glFrontFace, "e", kNone),
-      ROW(glPolygonMode, "ee", kNone),
-      ROW(glPolygonOffset, "ff", kNone),
-      ROW(glPointSize, "f", kNone),
-      ROW(glLineWidth, "f", kNone),
+      ROW(glCullFace, "e:mode", kNone),
+      ROW(glFrontFace, "e:mode", kNone),
+      ROW(glPolygonMode, "e:face e:mode", kNone),
+      ROW(glPolygonOffset, "f:factor f:units", kNone),
+      ROW(glPointSize, "f:size", kNone),
+      ROW(glLineWidth, "f:width", kNone),
       // pixel storage and textures
-      ROW(glPixelStorei, "ex", kNotCompiled),
-      ROW(glPixelStoref, "ey", kNotCompiled),
-      ROW(glGenTextures, "iO", kNotCompiled),
-      ROW(glDeleteTextures, "iU*", kNotCompiled),
-      ROW(glBindTexture, "eu", kNone),
-      ROW(glIsTexture, "u", kNotCompiled),
-      ROW(glTexImage1D, "eixiieeV*", kNone),
-      ROW(glTexImage2D, "eixiiieeV*", kNone),
-      ROW(gluBuild1DMipmaps, "exieeV*", kNone),
-      ROW(gluBuild2DMipmaps, "exiieeV*", kNone),
-      ROW(glTexSubImage1D, "eiiieeV*", kNone),
-      ROW(glTexSubImage2D, "eiiiiieeV*", kNone),
-      ROW(glCopyTexImage1D, "eieiiii", kNone),
-      ROW(glCopyTexImage2D, "eieiiiii", kNone),
-      ROW(glCopyTexSubImage1D, "eiiiii", kNone),
-      ROW(glCopyTexSubImage2D, "eiiiiiii", kNone),
-      ROW(glGetTexImage, "eieeO", kQuery),
-      ROW(glTexParameteri, "eex", kNone),
-      ROW(glTexParameterf, "eey", kNone),
-      ROW(glTexParameterfv, "eeFp", kNone),
-      ROW(glGetTexParameterfv, "eeO", kQuery),
-      ROW(glGetTexParameteriv, "eeO", kQuery),
-      ROW(glGetTexLevelParameteriv, "eieO", kQuery),
-      ROW(glTexEnvi, "eex", kNone),
-      ROW(glTexEnvf, "eey", kNone),
-      ROW(glTexEnvfv, "eeFp", kNone),
-      ROW(glTexGeni, "eex", kNone),
-      ROW(glTexGenf, "eey", kNone),
-      ROW(glTexGenfv, "eeFp", kNone),
-      ROW(glTexGendv, "eeDp", kNone),
+      ROW(glPixelStorei, "e:pname x:param", kNotCompiled),
+      ROW(glPixelStoref, "e:pname y:param", kNotCompiled),
+      ROW(glGenTextures, "i:n O[n]:textures", kNotCompiled),
+      ROW(glDeleteTextures, "i:n U[n]:textures", kNotCompiled),
+      ROW(glBindTexture, "e:target u:texture", kNone),
+      ROW(glIsTexture, "u:texture", kNotCompiled),
+      ROW(glTexImage1D, "e:target i:level x:internalformat i:width i:border e:format e:type V{image width}:pixels", kNone),
+      ROW(glTexImage2D, "e:target i:level x:internalformat i:width i:height i:border e:format e:type V{image width height}:pixels", kNone),
+      ROW(gluBuild1DMipmaps, "e:target x:internalformat i:width e:format e:type V{image width}:data", kNone),
+      ROW(gluBuild2DMipmaps, "e:target x:internalformat i:width i:height e:format e:type V{image width height}:data", kNone),
+      ROW(glTexSubImage1D, "e:target i:level i:xoffset i:width e:format e:type V{image width}:pixels", kNone),
+      ROW(glTexSubImage2D, "e:target i:level i:xoffset i:yoffset i:width i:height e:format e:type V{image width height}:pixels", kNone),
+      ROW(glCopyTexImage1D, "e:target i:level e:internalformat i:x i:y i:width i:border", kNone),
+      ROW(glCopyTexImage2D, "e:target i:level e:internalformat i:x i:y i:width i:height i:border", kNone),
+      ROW(glCopyTexSubImage1D, "e:target i:level i:xoffset i:x i:y i:width", kNone),
+      ROW(glCopyTexSubImage2D, "e:target i:level i:xoffset i:yoffset i:x i:y i:width i:height", kNone),
+      ROW(glGetTexImage, "e:target i:level e:format e:type O:pixels", kQuery),
+      ROW(glTexParameteri, "e:target e:pname x:param", kNone),
+      ROW(glTexParameterf, "e:target e:pname y:param", kNone),
+      ROW(glTexParameterfv, "e:target e:pname Fp:params", kNone),
+      ROW(glGetTexParameterfv, "e:target e:pname Op:params", kQuery),
+      ROW(glGetTexParameteriv, "e:target e:pname Op:params", kQuery),
+      ROW(glGetTexLevelParameteriv, "e:target i:level e:pname Op:params", kQuery),
+      ROW(glTexEnvi, "e:target e:pname x:param", kNone),
+      ROW(glTexEnvf, "e:target e:pname y:param", kNone),
+      ROW(glTexEnvfv, "e:target e:pname Fp:params", kNone),
+      ROW(glTexGeni, "e:coord e:pname x:param", kNone),
+      ROW(glTexGenf, "e:coord e:pname y:param", kNone),
+      ROW(glTexGenfv, "e:coord e:pname Fp:params", kNone),
+      ROW(glTexGendv, "e:coord e:pname Dp:params", kNone),
       // raster position and pixel rectangles
-      ROW(glRasterPos2i, "ii", kNone),
-      ROW(glRasterPos2f, "ff", kNone),
-      ROW(glRasterPos3f, "fff", kNone),
-      ROW(glRasterPos4f, "ffff", kNone),
-      ROW(glRasterPos2d, "dd", kNone),
-      ROW(glRasterPos3d, "ddd", kNone),
-      ROW(glPixelZoom, "ff", kNone),
-      ROW(glPixelTransferf, "ey", kNone),
-      ROW(glPixelTransferi, "ex", kNone),
-      ROW(glPixelMapfv, "eiF*", kNone),
-      ROW(glPixelMapusv, "eiH*", kNone),
-      ROW(glPixelMapuiv, "eiU*", kNone),
-      ROW(glDrawPixels, "iieeV*", kNone),
-      ROW(glReadPixels, "iiiieeO", kQuery),
-      ROW(glCopyPixels, "iiiie", kNone),
-      ROW(glBitmap, "iiffffB*", kNone),
+      ROW(glRasterPos2i, "i:x i:y", kNone),
+      ROW(glRasterPos2f, "f:x f:y", kNone),
+      ROW(glRasterPos3f, "f:x f:y f:z", kNone),
+      ROW(glRasterPos4f, "f:x f:y f:z f:w", kNone),
+      ROW(glRasterPos2d, "d:x d:y", kNone),
+      ROW(glRasterPos3d, "d:x d:y d:z", kNone),
+      ROW(glPixelZoom, "f:xfactor f:yfactor", kNone),
+      ROW(glPixelTransferf, "e:pname y:param", kNone),
+      ROW(glPixelTransferi, "e:pname x:param", kNone),
+      ROW(glPixelMapfv, "e:map i:mapsize F[mapsize]:values", kNone),
+      ROW(glPixelMapusv, "e:map i:mapsize H[mapsize]:values", kNone),
+      ROW(glPixelMapuiv, "e:map i:mapsize U[mapsize]:values", kNone),
+      ROW(glDrawPixels, "i:width i:height e:format e:type V{image width height}:pixels", kDraws),
+      ROW(glReadPixels, "i:x i:y i:width i:height e:format e:type O{image width height}:pixels", kQuery),
+      ROW(glCopyPixels, "i:x i:y i:width i:height e:type", kDraws),
+      ROW(glBitmap, "i:width i:height f:xorig f:yorig f:xmove f:ymove B{bitmap width height}:bitmap", kDraws),
       // imaging: colour tables
-      ROW(glColorTable, "eeieeV*", kNone),
-      ROW(glColorSubTable, "eiieeV*", kNone),
-      ROW(glCopyColorTable, "eeiii", kNone),
-      ROW(glColorTableParameterfv, "eeF4", kNone),
-      ROW(glGetColorTableParameteriv, "eeO", kQuery),
-      ROW(glCopyColorSubTable, "eiiii", kNone),
-      ROW(glGetColorTable, "eeeO", kQuery),
-      ROW(glGetConvolutionFilter, "eeeO", kQuery),
-      ROW(glGetSeparableFilter, "eeeOOO", kQuery),
-      ROW(glCopyConvolutionFilter1D, "eeiii", kNone),
-      ROW(glConvolutionFilter1D, "eeieeV*", kNone),
-      ROW(glConvolutionFilter2D, "eeiieeV*", kNone),
-      ROW(glSeparableFilter2D, "eeiieeV*V*", kNone),
-      ROW(glCopyConvolutionFilter2D, "eeiiii", kNone),
-      ROW(glConvolutionParameteri, "eex", kNone),
-      ROW(glConvolutionParameterfv, "eeFp", kNone),
-      ROW(glHistogram, "eiez", kNone),
-      ROW(glResetHistogram, "e", kNone),
-      ROW(glGetHistogram, "ezeeO", kQuery),
-      ROW(glMinmax, "eez", kNone),
-      ROW(glResetMinmax, "e", kNone),
-      ROW(glGetMinmax, "ezeeO", kQuery),
+      ROW(glColorTable, "e:target e:internalformat i:width e:format e:type V{image width}:table", kNone),
+      ROW(glColorSubTable, "e:target i:start i:count e:format e:type V{image count}:data", kNone),
+      ROW(glCopyColorTable, "e:target e:internalformat i:x i:y i:width", kNone),
+      ROW(glColorTableParameterfv, "e:target e:pname F4:params", kNone),
+      ROW(glGetColorTableParameteriv, "e:target e:pname Op:params", kQuery),
+      ROW(glCopyColorSubTable, "e:target i:start i:x i:y i:width", kNone),
+      ROW(glGetColorTable, "e:target e:format e:type O:table", kQuery),
+      ROW(glGetConvolutionFilter, "e:target e:format e:type O:image", kQuery),
+      ROW(glGetSeparableFilter, "e:target e:format e:type O:row O:column O:span", kQuery),
+      ROW(glCopyConvolutionFilter1D, "e:target e:internalformat i:x i:y i:width", kNone),
+      ROW(glConvolutionFilter1D, "e:target e:internalformat i:width e:format e:type V{image width}:image", kNone),
+      ROW(glConvolutionFilter2D, "e:target e:internalformat i:width i:height e:format e:type V{image width height}:image", kNone),
+      ROW(glSeparableFilter2D, "e:target e:internalformat i:width i:height e:format e:type V{image width}:row V{image height}:column", kNone),
+      ROW(glCopyConvolutionFilter2D, "e:target e:internalformat i:x i:y i:width i:height", kNone),
+      ROW(glConvolutionParameteri, "e:target e:pname x:params", kNone),
+      ROW(glConvolutionParameterfv, "e:target e:pname Fp:params", kNone),
+      ROW(glHistogram, "e:target i:width e:internalformat z:sink", kNone),
+      ROW(glResetHistogram, "e:target", kNone),
+      ROW(glGetHistogram, "e:target z:reset e:format e:type O:values", kQuery),
+      ROW(glMinmax, "e:target e:internalformat z:sink", kNone),
+      ROW(glResetMinmax, "e:target", kNone),
+      ROW(glGetMinmax, "e:target z:reset e:format e:type O:values", kQuery),
       // fog
-      ROW(glFogf, "ey", kNone),
-      ROW(glFogi, "ex", kNone),
-      ROW(glFogfv, "eFp", kNone),
+      ROW(glFogf, "e:pname y:param", kNone),
+      ROW(glFogi, "e:pname x:param", kNone),
+      ROW(glFogfv, "e:pname Fp:params", kNone),
       // passes (EXT_debug_marker)
-      ROW(glPushGroupMarkerEXT, "is", kNotCompiled),
+      ROW(glPushGroupMarkerEXT, "i:length s:marker", kNotCompiled),
       ROW(glPopGroupMarkerEXT, "", kNotCompiled),
-      ROW(glInsertEventMarkerEXT, "is", kNotCompiled),
+      ROW(glInsertEventMarkerEXT, "i:length s:marker", kNotCompiled),
   };
   return rows;
 }
@@ -495,6 +560,61 @@ int type_size(GLenum type) {
   }
 }
 
+std::string describe_call(const CallInfo& info) {
+  auto type_of = [](char kind) -> std::string_view {
+    switch (kind) {
+      case 'e': case 'n': case 'm': return "GLenum";
+      case 'z': return "GLboolean";
+      case 'b': return "GLbitfield";
+      case 'i': return "GLint";
+      case 'x': return "GLint(or enum)";
+      case 'u': return "GLuint";
+      case 'c': return "GLubyte";
+      case 'f': return "GLfloat";
+      case 'y': return "GLfloat(or enum)";
+      case 'd': return "GLdouble";
+      case 's': return "string";
+      case 'F': return "const GLfloat*";
+      case 'D': return "const GLdouble*";
+      case 'I': return "const GLint*";
+      case 'U': return "const GLuint*";
+      case 'B': return "const GLubyte*";
+      case 'H': return "const GLushort*";
+      case 'V': return "const void*";
+      case 'O': return "out";
+      default: return "?";
+    }
+  };
+  std::string out = fmt::format("{}(", info.name);
+  for (std::size_t k = 0; k < info.params.size(); ++k) {
+    const CallInfo::Param& p = info.params[k];
+    out += fmt::format("{}{} {}", k ? ", " : "", type_of(p.kind), p.name);
+    auto arg = [&](int i) { return i < 0 ? std::string_view("1") : info.params[static_cast<std::size_t>(i)].name; };
+    switch (p.length) {
+      case Length::Fixed: out += fmt::format("[{}]", p.fixed_count); break;
+      case Length::ByPname: out += "[by pname]"; break;
+      case Length::ByArgument: out += fmt::format("[{}]", arg(p.count_arg)); break;
+      case Length::Image:
+        out += fmt::format("[image {}", arg(p.dims[0]));
+        for (int d : {p.dims[1], p.dims[2]})
+          if (d >= 0) out += fmt::format("x{}", arg(d));
+        out += "]";
+        break;
+      case Length::Bitmap: out += fmt::format("[bitmap {}x{}]", arg(p.dims[0]), arg(p.dims[1])); break;
+      case Length::Any: if (p.kind != 'O') out += "[read at each draw]"; break;
+      case Length::None: break;
+    }
+  }
+  out += ")";
+  std::vector<std::string> notes;
+  if (info.query) notes.push_back("query");
+  else if (!info.compiled_into_lists) notes.push_back("not compiled into lists");
+  if (info.allowed_in_begin_end) notes.push_back("allowed in Begin/End");
+  if (info.draws) notes.push_back("draws");
+  if (!notes.empty()) out += fmt::format("  [{}]", fmt::join(notes, ", "));
+  return out;
+}
+
 std::string format_call(const Call& call) {
   const CallInfo& info = *call.info;
   std::string out(info.name);
@@ -547,8 +667,15 @@ Value array_value(const void* data, GLenum type, std::size_t count) {
 }
 }  // namespace detail
 
+int CallInfo::param_index(std::string_view n) const {
+  for (std::size_t k = 0; k < params.size(); ++k)
+    if (params[k].name == n) return static_cast<int>(k);
+  return -1;
+}
+
 GLenum param_element_type(const CallInfo& info, std::size_t index, const std::vector<Value>& done) {
-  switch (info.params[index].kind) {
+  const CallInfo::Param& p = info.params[index];
+  switch (p.kind) {
     case 'F': return GL_FLOAT;
     case 'D': return GL_DOUBLE;
     case 'I': return GL_INT;
@@ -556,22 +683,48 @@ GLenum param_element_type(const CallInfo& info, std::size_t index, const std::ve
     case 'B': return GL_UNSIGNED_BYTE;
     case 'H': return GL_UNSIGNED_SHORT;
     case 'V':
-      for (std::size_t k = index; k-- > 0;)
-        if (info.params[k].kind == 'e') return static_cast<GLenum>(done[k].i);
-      return 0;
+    case 'O':
+      if (p.type_arg >= 0 && static_cast<std::size_t>(p.type_arg) < done.size())
+        return static_cast<GLenum>(done[static_cast<std::size_t>(p.type_arg)].i);
+      return p.kind == 'O' ? GL_UNSIGNED_BYTE : 0;
     default: return 0;
   }
 }
 
-std::size_t param_values_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done) {
+std::uint64_t param_elements_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done,
+                                    const PixelStore& store) {
   const CallInfo::Param& p = info.params[index];
-  if (p.count_rule == 'n') return static_cast<std::size_t>(p.fixed_count);
-  if (p.count_rule != 'p') return 0;
-  for (std::size_t k = index; k-- > 0;)
-    if (info.params[k].kind == 'e')
+  auto arg = [&](int k) { return k < 0 ? std::int64_t{1} : done[static_cast<std::size_t>(k)].i; };
+  auto dimension = [&](int k) {
+    const std::int64_t v = arg(k);
+    return v > std::numeric_limits<int>::max() ? -1 : static_cast<int>(v);  // too large: rejected by the GL
+  };
+  switch (p.length) {
+    case Length::Fixed: return static_cast<std::uint64_t>(p.fixed_count);
+    case Length::ByPname:
       // An unknown pname still reads one value.
-      return std::max<std::size_t>(static_cast<std::size_t>(pname_count(static_cast<GLenum>(done[k].i))), 1);
-  return 1;
+      return static_cast<std::uint64_t>(std::max(pname_count(static_cast<GLenum>(arg(p.count_arg))), 1));
+    case Length::ByArgument: return static_cast<std::uint64_t>(std::max<std::int64_t>(arg(p.count_arg), 0));
+    case Length::Image: {
+      const GLenum format = static_cast<GLenum>(arg(p.format_arg)), type = static_cast<GLenum>(arg(p.type_arg));
+      const int w = dimension(p.dims[0]), h = dimension(p.dims[1]), d = dimension(p.dims[2]);
+      if (format_components(format) == 0 || !is_pixel_type(type) || w <= 0 || h <= 0 || d <= 0) return 0;
+      // A 3D image is `d` images of h rows (§3.8.1; no image-height mode modelled yet).
+      const CheckedSize rows = CheckedSize(h) * d;
+      if (!rows.fits_int()) throw SizeOverflow("an image of more than 2^31 rows");
+      const CheckedSize bytes = image_bytes(w, static_cast<int>(rows.value()), format, type, store);
+      return bytes.value() / static_cast<std::uint64_t>(type_size(type));
+    }
+    case Length::Bitmap: {
+      const int w = dimension(p.dims[0]), h = dimension(p.dims[1]);
+      return w <= 0 || h <= 0 ? 0 : bitmap_bytes(w, h, store);
+    }
+    case Length::None:
+    case Length::Any: return 0;
+  }
+  return 0;
 }
+
+bool param_may_be_null(const CallInfo::Param& p) { return p.length == Length::Image || p.length == Length::Bitmap; }
 
 }  // namespace passim

@@ -2,6 +2,7 @@
 // share: one row per call gives its name, argument signature and invoker, so a
 // call is parsed, printed, compiled into a list and replayed by one description.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -34,37 +35,65 @@ struct Value {
   std::size_t count = 0;  // elements
 };
 
-// Signature letters, one per parameter:
+// A row's signature names each parameter as the spec's prototype does, with a letter for
+// its kind: "e:target i:level x:internalformat i:width e:format e:type V{image width}:pixels".
+// Scalars:
 //   e enum   m primitive mode   n buffer enum (0 prints GL_NONE)   z GLboolean
 //   b bitfield   i int   u uint   c GLubyte   f float   d double   s string
 //   x int that may hold an enum value   y float that may hold an enum value
+// Arrays (client memory), followed by their length rule:
 //   F const GLfloat*   D const GLdouble*   I const GLint*   U const GLuint*   B const GLubyte*
-//   H const GLushort*
-//   V const void* whose element type is the closest preceding 'e' argument
-//   O output array (queries; ignored when replayed)
-// An array letter is followed by its element count: a number, 'p' (by the
-// preceding pname argument, see pname_count) or '*' (any length; the call checks).
+//   H const GLushort*   V const void* whose element type is the argument named `type`
+//   O output (queries write it)
+// Length rules:
+//   16               that many elements
+//   p                as many as the argument named `pname` takes (pname_count)
+//   [count]          as many as the argument named `count` says
+//   {image w h d}    the bytes an image of those dimension arguments (1 when left out), with
+//                    the arguments `format` and `type`, reads under the pixel-store modes (§3.6.4)
+//   {bitmap w h}     the bytes of a bitmap of those dimensions (§3.6.4, type BITMAP)
+//   *                not known at the call (client-array pointers: read at each draw)
+enum class Length : std::uint8_t { None, Fixed, ByPname, ByArgument, Image, Bitmap, Any };
+
 struct CallInfo {
   std::string_view name;
   std::string_view signature;
-  bool compiled_into_lists = true;  // §5.4: false for the calls executed immediately
+  bool compiled_into_lists = true;    // §5.4: false for the calls executed immediately
   bool allowed_in_begin_end = false;  // §2.6.3
   // Changes no state the fragment stages read, so queued primitives may wait past it
-  // (pipeline/raster_lanes): the calls allowed in Begin/End, Begin, the draws and Rect.
+  // (pipeline/raster_lanes): the calls allowed in Begin/End, Begin, the array draws and Rect.
   bool keeps_raster_queue = false;
+  // Draws (primitives, pixels, clears, accumulation): what apitrace's "draw" call set selects.
+  bool draws = false;
+  // Reads the enabled client arrays (§2.8: ArrayElement, DrawArrays, DrawElements): recorded
+  // with the array data it reads, compiled into lists as that data (§5.4). Its elements are
+  // its `i`, or `first` and `count`, or `count` `indices`.
+  bool reads_client_arrays = false;
   void (*invoke)(Context&, std::span<const Value>) = nullptr;
   bool returns_value = false;
-  bool query = false;            // has output arguments: never recorded or compiled
-  bool recorded_at_draw = false;  // client-array pointers: recorded with their data at each draw
+  bool query = false;  // has output arguments: never recorded or compiled
+  // Client-array pointer calls: the array they set (recorded with its data at each draw); 0 for others.
+  GLenum client_array = 0;
+  bool recorded_at_draw() const { return client_array != 0; }
 
-  // Parameter descriptions parsed from the signature.
   struct Param {
-    char kind;
-    char count_rule;  // 0 for scalars; 'n' fixed, 'p' by pname, '*' any
-    int fixed_count;
+    char kind = 0;
+    std::string_view name;
+    Length length = Length::None;
+    int fixed_count = 0;
+    int count_arg = -1;                  // ByArgument: the count; ByPname: the pname
+    std::array<int, 3> dims{-1, -1, -1};  // Image, Bitmap: width, height, depth arguments (-1: 1)
+    int format_arg = -1, type_arg = -1;  // Image: the format; V and Image: the type
+    bool is_array() const { return length != Length::None; }
   };
   std::vector<Param> params;
+  // The index of the parameter with this name; -1 when there is none.
+  int param_index(std::string_view name) const;
 };
+
+// Output arguments of calls replayed from a trace are written into a scratch area of this many
+// elements; a call asking for more is refused before it runs.
+inline constexpr std::uint64_t kOutputScratchElements = 65536;
 
 // nullptr when no such call is known.
 const CallInfo* find_call(std::string_view name);
@@ -76,17 +105,27 @@ int pname_count(GLenum pname);
 // Bytes of one element of a GL data type; 0 if unknown.
 int type_size(GLenum type);
 
+struct PixelStore;
 // The element type of array parameter `index`: its letter's (F float, D double, ...), or for
-// 'V' the closest preceding enum argument's (`done` holds the arguments before it).
+// 'V' the `type` argument's (`done` holds the arguments before it).
 GLenum param_element_type(const CallInfo& info, std::size_t index, const std::vector<Value>& done);
-// The fewest values array parameter `index` must hold: its fixed count, or by the pname.
-std::size_t param_values_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done);
+// The elements array parameter `index` reads by its length rule, given the arguments before it
+// and the pixel-store modes it reads under; 0 for Any, or for an image or bitmap the GL rejects
+// before reading (bad format, type or size). Checked 64-bit arithmetic: SizeOverflow.
+std::uint64_t param_elements_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done,
+                                    const PixelStore& store);
+// Whether a null pointer is valid for the parameter (an image or bitmap: no data).
+bool param_may_be_null(const CallInfo::Param& p);
 
 // A recorded or compiled call.
 struct Call {
   const CallInfo* info = nullptr;
   std::vector<Value> args;
 };
+
+// A row as a prototype with its argument types, length rules and flags (passim info --calls):
+// "glBitmap(GLint width, ..., const GLubyte* bitmap[bitmap widthxheight])  [draws]".
+std::string describe_call(const CallInfo& info);
 
 // Canonical text of a call: "glColorMask(GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE)".
 std::string format_call(const Call& call);

@@ -83,66 +83,58 @@ void Context::warn_once(const std::string& message) {
 
 // ---------------------------------------------------------------- recording and lists
 
-bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values) {
-  static const CallInfo* const draw_arrays = find_call("glDrawArrays");
-  static const CallInfo* const draw_elements = find_call("glDrawElements");
-  static const CallInfo* const array_element = find_call("glArrayElement");
-  const bool array_draw = &info == draw_arrays || &info == draw_elements || &info == array_element;
+namespace {
 
-  if (sink_ && !info.query && !info.recorded_at_draw) {
-    if (array_draw) {
+// The client-array elements a call that reads the arrays reads, in order (calls.hpp).
+std::vector<int> array_elements(const CallInfo& info, const std::vector<Value>& values) {
+  std::vector<int> elements;
+  if (const int i = info.param_index("i"); i >= 0) {
+    elements.push_back(static_cast<int>(values[static_cast<std::size_t>(i)].i));
+  } else if (const int indices = info.param_index("indices"); indices >= 0) {
+    const Value& v = values[static_cast<std::size_t>(indices)];
+    const std::byte* p = v.bytes ? v.bytes->data() : nullptr;
+    for (std::size_t k = 0; p && k < v.count; ++k) {
+      std::uint32_t idx = 0;
+      if (v.elem_type == GL_UNSIGNED_BYTE) idx = static_cast<std::uint8_t>(p[k]);
+      else if (v.elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); idx = s; }
+      else std::memcpy(&idx, p + 4 * k, 4);
+      elements.push_back(static_cast<int>(idx));
+    }
+  } else {
+    const std::int64_t first = values[static_cast<std::size_t>(info.param_index("first"))].i;
+    const std::int64_t count = values[static_cast<std::size_t>(info.param_index("count"))].i;
+    for (std::int64_t k = 0; k < count; ++k) elements.push_back(static_cast<int>(first + k));
+  }
+  return elements;
+}
+
+}  // namespace
+
+bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values) {
+  if (sink_ && !info.query && !info.recorded_at_draw()) {
+    if (info.reads_client_arrays) {
       // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
-      int max_index = -1;
-      if (&info == draw_arrays) {
-        max_index = static_cast<int>(values[1].i + values[2].i - 1);
-      } else if (&info == array_element) {
-        max_index = static_cast<int>(values[0].i);
-      } else if (values[3].bytes) {
-        for (std::size_t k = 0; k < values[3].count; ++k) {
-          std::uint32_t idx = 0;
-          const std::byte* p = values[3].bytes->data();
-          if (values[3].elem_type == GL_UNSIGNED_BYTE) idx = static_cast<std::uint8_t>(p[k]);
-          else if (values[3].elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); idx = s; }
-          else if (values[3].elem_type == GL_UNSIGNED_INT) std::memcpy(&idx, p + 4 * k, 4);
-          max_index = std::max(max_index, static_cast<int>(idx));
-        }
-      }
+      const std::vector<int> elements = array_elements(info, values);
+      const int max_index = elements.empty() ? -1 : *std::max_element(elements.begin(), elements.end());
       if (max_index >= 0) record_client_arrays(max_index);
     }
     sink_->on_call(Call{&info, values});
   }
   if (compiling_list_ == 0 || !info.compiled_into_lists) return false;
-  if (array_draw) {
+  if (info.reads_client_arrays) {
     // §5.4: vertex-array commands are compiled with their data dereferenced: as the
-    // equivalent Begin / per-element calls / End.
+    // equivalent Begin / per-element calls / End (ArrayElement: the per-element calls alone).
     std::vector<Call>& out = compiling_calls_;
-    static const CallInfo* const begin = find_call("glBegin");
-    static const CallInfo* const end = find_call("glEnd");
-    auto compile_indices = [&](GLenum mode, const std::vector<int>& indices) {
-      Value m;
-      m.i = mode;
-      out.push_back(Call{begin, {m}});
-      for (int i : indices) compile_array_element(i, out);
-      out.push_back(Call{end, {}});
-    };
-    if (&info == array_element) {
-      compile_array_element(static_cast<int>(values[0].i), out);
-    } else if (&info == draw_arrays) {
-      std::vector<int> idx;
-      for (std::int64_t k = 0; k < values[2].i; ++k) idx.push_back(static_cast<int>(values[1].i + k));
-      if (values[2].i >= 0) compile_indices(static_cast<GLenum>(values[0].i), idx);
-    } else {
-      std::vector<int> idx;
-      const Value& ind = values[3];
-      for (std::size_t k = 0; ind.bytes && k < ind.count; ++k) {
-        const std::byte* p = ind.bytes->data();
-        std::uint32_t v = 0;
-        if (ind.elem_type == GL_UNSIGNED_BYTE) v = static_cast<std::uint8_t>(p[k]);
-        else if (ind.elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); v = s; }
-        else std::memcpy(&v, p + 4 * k, 4);
-        idx.push_back(static_cast<int>(v));
-      }
-      compile_indices(static_cast<GLenum>(values[0].i), idx);
+    const std::vector<int> elements = array_elements(info, values);
+    const int mode = info.param_index("mode");
+    if (mode < 0) {
+      for (int i : elements) compile_array_element(i, out);
+    } else if (info.param_index("first") < 0 || values[static_cast<std::size_t>(info.param_index("count"))].i >= 0) {
+      static const CallInfo& begin = call_info_or_die("glBegin");
+      static const CallInfo& end = call_info_or_die("glEnd");
+      out.push_back(Call{&begin, {values[static_cast<std::size_t>(mode)]}});
+      for (int i : elements) compile_array_element(i, out);
+      out.push_back(Call{&end, {}});
     }
   } else {
     compiling_calls_.push_back(Call{&info, std::move(values)});

@@ -364,24 +364,6 @@ class Context {
   };
   template <class... A>
   bool intercept(const CallInfo& info, const A&... args);
-  // Array argument for recording: pointer and element count.
-  template <class T>
-  struct ArrayArg {
-    const T* data;
-    std::size_t count;
-  };
-  struct RawArrayArg {
-    const void* data;
-    GLenum type;
-    std::size_t count;
-  };
-  // The array argument of an image call: the elements a width x height image of
-  // format/type reads under the current unpack modes (0 for no data or a rejected call).
-  RawArrayArg image_arg(const void* data, int width, int height, GLenum format, GLenum type) const {
-    const int size = type_size(type);
-    if (!data || width <= 0 || height <= 0 || format_components(format) == 0 || size == 0) return {data, type, 0};
-    return {data, type, image_bytes(width, height, format, type, pixel_store_.unpack) / static_cast<std::size_t>(size)};
-  }
 
  private:
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
@@ -729,39 +711,26 @@ class Context {
 namespace passim {
 namespace detail {
 
+Value array_value(const void* data, GLenum type, std::size_t count);
+
+// Argument `values.size()` of a call as the call table records it: numbers exactly, strings,
+// and client memory as the elements its row's length rule says the call reads.
 template <class T>
-Value to_value(const T& v) {
+Value to_value(const CallInfo& info, const std::vector<Value>& values, const T& v, const PixelStore& unpack) {
   Value out;
   if constexpr (std::is_floating_point_v<T>) {
     out.d = static_cast<double>(v);
   } else if constexpr (std::is_integral_v<T>) {
     out.i = static_cast<std::int64_t>(v);
-  } else if constexpr (std::is_same_v<T, const char*> || std::is_same_v<T, const GLchar*>) {
+  } else if constexpr (std::is_same_v<T, const char*>) {
     out.set_str(v ? v : "");
+  } else if constexpr (std::is_pointer_v<T> && std::is_const_v<std::remove_pointer_t<T>>) {
+    const std::size_t k = values.size();
+    out = array_value(v, param_element_type(info, k, values),
+                      v ? static_cast<std::size_t>(param_elements_needed(info, k, values, unpack)) : 0);
   }
-  return out;
+  return out;  // an output pointer: nothing to record
 }
-
-template <class T>
-constexpr GLenum gl_type_of() {
-  if constexpr (std::is_same_v<T, GLfloat>) return GL_FLOAT;
-  else if constexpr (std::is_same_v<T, GLdouble>) return GL_DOUBLE;
-  else if constexpr (std::is_same_v<T, GLint>) return GL_INT;
-  else if constexpr (std::is_same_v<T, GLuint>) return GL_UNSIGNED_INT;
-  else if constexpr (std::is_same_v<T, GLubyte>) return GL_UNSIGNED_BYTE;
-  else if constexpr (std::is_same_v<T, GLbyte>) return GL_BYTE;
-  else if constexpr (std::is_same_v<T, GLshort>) return GL_SHORT;
-  else if constexpr (std::is_same_v<T, GLushort>) return GL_UNSIGNED_SHORT;
-  else return 0;
-}
-
-Value array_value(const void* data, GLenum type, std::size_t count);
-
-template <class T>
-Value to_value(const Context::ArrayArg<T>& a) {
-  return array_value(a.data, gl_type_of<T>(), a.count);
-}
-inline Value to_value(const Context::RawArrayArg& a) { return array_value(a.data, a.type, a.count); }
 
 }  // namespace detail
 
@@ -771,7 +740,7 @@ bool Context::intercept(const CallInfo& info, const A&... args) {
   if (!sink_ && compiling_list_ == 0) return false;
   std::vector<Value> values;
   values.reserve(sizeof...(A));
-  (values.push_back(detail::to_value(args)), ...);
+  (values.push_back(detail::to_value(info, values, args, pixel_store_.unpack)), ...);
   return intercept_values(info, std::move(values));
 }
 

@@ -74,24 +74,24 @@ void Context::glLoadIdentity() {
 }
 
 void Context::glLoadMatrixf(const GLfloat* m) {
-  PASSIM_ENTRY(ArrayArg<GLfloat>{m, 16})
+  PASSIM_ENTRY(m)
   current_stack().back() = matrix_from(m);
   normal_matrix_dirty_ = true;
 }
 
 void Context::glLoadMatrixd(const GLdouble* m) {
-  PASSIM_ENTRY(ArrayArg<GLdouble>{m, 16})
+  PASSIM_ENTRY(m)
   current_stack().back() = matrix_from(m);
   normal_matrix_dirty_ = true;
 }
 
 void Context::glMultMatrixf(const GLfloat* m) {
-  PASSIM_ENTRY(ArrayArg<GLfloat>{m, 16})
+  PASSIM_ENTRY(m)
   mult_matrix(matrix_from(m));
 }
 
 void Context::glMultMatrixd(const GLdouble* m) {
-  PASSIM_ENTRY(ArrayArg<GLdouble>{m, 16})
+  PASSIM_ENTRY(m)
   mult_matrix(matrix_from(m));
 }
 
@@ -173,7 +173,7 @@ void Context::gluLookAt(GLdouble ex, GLdouble ey, GLdouble ez, GLdouble cx, GLdo
 }
 
 void Context::glClipPlane(GLenum plane, const GLdouble* equation) {
-  PASSIM_ENTRY(plane, ArrayArg<GLdouble>{equation, 4})
+  PASSIM_ENTRY(plane, equation)
   if (plane < GL_CLIP_PLANE0 || plane >= GL_CLIP_PLANE0 + 6) return set_error(GL_INVALID_ENUM);
   // §2.11: the plane is transformed by the inverse of the modelview matrix at this call.
   const Vec4 p(equation[0], equation[1], equation[2], equation[3]);
@@ -224,36 +224,36 @@ void Context::glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a) {
   PASSIM_ENTRY(r, g, b, a)
   PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, a / 255.0)
 }
-void Context::glColor3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
+void Context::glColor3fv(const GLfloat* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
 void Context::glColor3ubv(const GLubyte* v) {
-  PASSIM_ENTRY(ArrayArg<GLubyte>{v, 3})
+  PASSIM_ENTRY(v)
   PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, 1.0)
 }
 void Context::glColor4ubv(const GLubyte* v) {
-  PASSIM_ENTRY(ArrayArg<GLubyte>{v, 4})
+  PASSIM_ENTRY(v)
   PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, v[3] / 255.0)
 }
-void Context::glColor3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
-void Context::glColor4dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 4}) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
-void Context::glColor4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
+void Context::glColor3dv(const GLdouble* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
+void Context::glColor4dv(const GLdouble* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
+void Context::glColor4fv(const GLfloat* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
 #undef PASSIM_SET_COLOR
 
 void Context::glNormal3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
 void Context::glNormal3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
-void Context::glNormal3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) current_.normal = Vec3(v[0], v[1], v[2]); }
-void Context::glNormal3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) current_.normal = Vec3(v[0], v[1], v[2]); }
+void Context::glNormal3fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.normal = Vec3(v[0], v[1], v[2]); }
+void Context::glNormal3dv(const GLdouble* v) { PASSIM_ENTRY(v) current_.normal = Vec3(v[0], v[1], v[2]); }
 
 void Context::glTexCoord1f(GLfloat s) { PASSIM_ENTRY(s) current_.texcoord = Vec4(s, 0.0, 0.0, 1.0); }
 void Context::glTexCoord2f(GLfloat s, GLfloat t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
 void Context::glTexCoord3f(GLfloat s, GLfloat t, GLfloat r) { PASSIM_ENTRY(s, t, r) current_.texcoord = Vec4(s, t, r, 1.0); }
 void Context::glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
 void Context::glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
-void Context::glTexCoord2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
-void Context::glTexCoord3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) current_.texcoord = Vec4(v[0], v[1], v[2], 1.0); }
-void Context::glTexCoord4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) current_.texcoord = Vec4(v[0], v[1], v[2], v[3]); }
+void Context::glTexCoord2fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
+void Context::glTexCoord3fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], v[2], 1.0); }
+void Context::glTexCoord4fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], v[2], v[3]); }
 void Context::glTexCoord2d(GLdouble s, GLdouble t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
 void Context::glTexCoord2i(GLint s, GLint t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
-void Context::glTexCoord2dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 2}) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
+void Context::glTexCoord2dv(const GLdouble* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
 
 // ---------------------------------------------------------------- vertices and primitives
 
@@ -263,10 +263,10 @@ void Context::glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_EN
 void Context::glVertex2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
 void Context::glVertex3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
 void Context::glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
-void Context::glVertex2dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3dv(const GLdouble* v) { PASSIM_ENTRY(ArrayArg<GLdouble>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
-void Context::glVertex2iv(const GLint* v) { PASSIM_ENTRY(ArrayArg<GLint>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3iv(const GLint* v) { PASSIM_ENTRY(ArrayArg<GLint>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
+void Context::glVertex2dv(const GLdouble* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3dv(const GLdouble* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
+void Context::glVertex2iv(const GLint* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3iv(const GLint* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
 void Context::glVertex2i(GLint x, GLint y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
 void Context::glVertex3i(GLint x, GLint y, GLint z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
 
@@ -283,9 +283,9 @@ void Context::glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2) {
 void Context::glRectf(GLfloat x1, GLfloat y1, GLfloat x2, GLfloat y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
 void Context::glRecti(GLint x1, GLint y1, GLint x2, GLint y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
 
-void Context::glVertex2fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 2}) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 3}) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
-void Context::glVertex4fv(const GLfloat* v) { PASSIM_ENTRY(ArrayArg<GLfloat>{v, 4}) submit_vertex(Vec4(v[0], v[1], v[2], v[3])); }
+void Context::glVertex2fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
+void Context::glVertex3fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
+void Context::glVertex4fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], v[3])); }
 
 namespace {
 bool is_primitive_mode(GLenum mode) { return mode <= GL_POLYGON; }
@@ -1089,7 +1089,7 @@ void Context::glDrawArrays(GLenum mode, GLint first, GLsizei count) {
 }
 
 void Context::glDrawElements(GLenum mode, GLsizei count, GLenum type, const void* indices) {
-  PASSIM_ENTRY(mode, count, type, RawArrayArg{indices, type, count > 0 ? static_cast<std::size_t>(count) : 0u})
+  PASSIM_ENTRY(mode, count, type, indices)
   if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
   if (type != GL_UNSIGNED_BYTE && type != GL_UNSIGNED_SHORT && type != GL_UNSIGNED_INT)
     return set_error(GL_INVALID_ENUM);
@@ -1166,7 +1166,7 @@ void Context::glLighti(GLenum light, GLenum pname, GLint param) {
 
 void Context::glLightfv(GLenum light, GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
-  PASSIM_ENTRY(light, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(light, pname, params)
   if (n == 0) return set_error(GL_INVALID_ENUM);
   vector_parameter(params, n, [&](const double* v) { set_light_param(light, pname, v); });
 }
@@ -1202,7 +1202,7 @@ void Context::glLightModeli(GLenum pname, GLint param) {
 
 void Context::glLightModelfv(GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
-  PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(pname, params)
   if (n == 0) return set_error(GL_INVALID_ENUM);
   vector_parameter(params, n, [&](const double* v) { set_light_model_param(pname, v); });
 }
@@ -1237,7 +1237,7 @@ void Context::glMaterialf(GLenum face, GLenum pname, GLfloat param) {
 
 void Context::glMaterialfv(GLenum face, GLenum pname, const GLfloat* params) {
   const int n = pname_count(pname);
-  PASSIM_ENTRY(face, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(face, pname, params)
   if (n == 0 || pname == GL_SPOT_DIRECTION) return set_error(GL_INVALID_ENUM);
   vector_parameter(params, n, [&](const double* v) { set_material_param(face, pname, v); });
 }

@@ -71,7 +71,7 @@ bool Context::check_table_format(GLenum internalformat) {
 void Context::glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                            const void* table) {
   PASSIM_ENTRY(target, internalformat, width, format, type,
-               image_arg(table, width, 1, format, type))
+               table)
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   if (!check_table_format(internalformat)) return;
@@ -89,7 +89,7 @@ void Context::glColorTable(GLenum target, GLenum internalformat, GLsizei width, 
 void Context::glColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format, GLenum type,
                               const void* data) {
   PASSIM_ENTRY(target, start, count, format, type,
-               image_arg(data, count, 1, format, type))
+               data)
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
@@ -142,7 +142,7 @@ void Context::glGetColorTable(GLenum target, GLenum format, GLenum type, void* t
 }
 
 void Context::glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
-  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, 4})
+  PASSIM_ENTRY(target, pname, params)
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
@@ -214,7 +214,7 @@ void Context::define_filter(ConvolutionFilter& f, GLenum internalformat, int wid
 void Context::glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                                     const void* image) {
   PASSIM_ENTRY(target, internalformat, width, format, type,
-               image_arg(image, width, 1, format, type))
+               image)
   if (target != GL_CONVOLUTION_1D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || width > profile_.limits.max_convolution_width) return set_error(GL_INVALID_VALUE);
@@ -226,7 +226,7 @@ void Context::glConvolutionFilter1D(GLenum target, GLenum internalformat, GLsize
 void Context::glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height,
                                     GLenum format, GLenum type, const void* image) {
   PASSIM_ENTRY(target, internalformat, width, height, format, type,
-               image_arg(image, width, height, format, type))
+               image)
   if (target != GL_CONVOLUTION_2D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
@@ -239,8 +239,8 @@ void Context::glConvolutionFilter2D(GLenum target, GLenum internalformat, GLsize
 
 void Context::glSeparableFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height, GLenum format,
                                   GLenum type, const void* row, const void* column) {
-  PASSIM_ENTRY(target, internalformat, width, height, format, type, image_arg(row, width, 1, format, type),
-               image_arg(column, height, 1, format, type))
+  PASSIM_ENTRY(target, internalformat, width, height, format, type, row,
+               column)
   if (target != GL_SEPARABLE_2D) return set_error(GL_INVALID_ENUM);
   if (!check_filter_format(internalformat, format, type)) return;
   if (width < 0 || height < 0 || width > profile_.limits.max_convolution_width ||
@@ -334,7 +334,7 @@ void Context::glConvolutionParameteri(GLenum target, GLenum pname, GLint param) 
 
 void Context::glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_CONVOLUTION_BORDER_MODE ? 1 : 4;
-  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(target, pname, params)
   vector_parameter(params, n, [&](const double* v) { set_convolution_parameter(target, pname, v); });
 }
 

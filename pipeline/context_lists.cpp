@@ -112,7 +112,7 @@ void Context::glCallList(GLuint list) {
 }
 
 void Context::glCallLists(GLsizei n, GLenum type, const void* lists) {
-  PASSIM_ENTRY(n, type, RawArrayArg{lists, type, n > 0 ? static_cast<std::size_t>(n) : 0u})
+  PASSIM_ENTRY(n, type, lists)
   if (n < 0) return set_error(GL_INVALID_VALUE);
   const int size = type_size(type);
   if (size == 0 || type == GL_DOUBLE) return set_error(GL_INVALID_ENUM);

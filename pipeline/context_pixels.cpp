@@ -117,7 +117,7 @@ void Context::set_pixel_map(GLenum map, GLsizei mapsize, const double* values) {
 }
 
 void Context::glPixelMapfv(GLenum map, GLsizei mapsize, const GLfloat* values) {
-  PASSIM_ENTRY(map, mapsize, ArrayArg<GLfloat>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  PASSIM_ENTRY(map, mapsize, values)
   std::vector<double> v(mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u);
   for (std::size_t k = 0; k < v.size(); ++k) v[k] = values[k];
   set_pixel_map(map, mapsize, v.data());
@@ -139,12 +139,12 @@ std::vector<double> pixel_map_values(GLenum map, GLsizei mapsize, const T* value
 }  // namespace
 
 void Context::glPixelMapusv(GLenum map, GLsizei mapsize, const GLushort* values) {
-  PASSIM_ENTRY(map, mapsize, ArrayArg<GLushort>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  PASSIM_ENTRY(map, mapsize, values)
   set_pixel_map(map, mapsize, pixel_map_values(map, mapsize, values, 65535.0).data());
 }
 
 void Context::glPixelMapuiv(GLenum map, GLsizei mapsize, const GLuint* values) {
-  PASSIM_ENTRY(map, mapsize, ArrayArg<GLuint>{values, mapsize > 0 ? static_cast<std::size_t>(mapsize) : 0u})
+  PASSIM_ENTRY(map, mapsize, values)
   set_pixel_map(map, mapsize, pixel_map_values(map, mapsize, values, 4294967295.0).data());
 }
 
@@ -182,7 +182,7 @@ void Context::RasterFragments::put(FragmentSpan& span, int first, int count, boo
 void Context::glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yorig, GLfloat xmove, GLfloat ymove,
                        const GLubyte* bitmap) {
   PASSIM_ENTRY(width, height, xorig, yorig, xmove, ymove,
-               RawArrayArg{bitmap, GL_UNSIGNED_BYTE, bitmap ? bitmap_bytes(width, height, pixel_store_.unpack) : 0})
+               bitmap)
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if (!raster_.valid) return;  // §3.7: an invalid raster position ignores the bitmap and stays
   if (bitmap && width > 0 && height > 0) {
@@ -493,7 +493,7 @@ void Context::read_framebuffer_stencil(int x, int y, int width, int height, std:
 
 void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(width, height, format, type,
-               image_arg(pixels, width, height, format, type))
+               pixels)
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
   if (format == GL_STENCIL_INDEX && fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);

@@ -75,7 +75,7 @@ void Context::glGenTextures(GLsizei n, GLuint* textures) {
 }
 
 void Context::glDeleteTextures(GLsizei n, const GLuint* textures) {
-  PASSIM_ENTRY(n, ArrayArg<GLuint>{textures, n > 0 ? static_cast<std::size_t>(n) : 0u})
+  PASSIM_ENTRY(n, textures)
   if (n < 0) return set_error(GL_INVALID_VALUE);
   for (GLsizei k = 0; k < n; ++k) {
     const GLuint name = textures[k];
@@ -278,26 +278,26 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
 void Context::glTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLint border, GLenum format,
                            GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, internalformat, width, border, format, type,
-               image_arg(pixels, width, 1, format, type))
+               pixels)
   tex_image(target, 1, level, internalformat, width, 1, border, format, type, pixels);
 }
 
 void Context::glTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei width, GLsizei height,
                            GLint border, GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, internalformat, width, height, border, format, type,
-               image_arg(pixels, width, height, format, type))
+               pixels)
   tex_image(target, 2, level, internalformat, width, height, border, format, type, pixels);
 }
 
 GLint Context::gluBuild1DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLenum format, GLenum type,
                                  const void* data) {
-  PASSIM_ENTRY_RET(0, target, internalformat, width, format, type, image_arg(data, width, 1, format, type))
+  PASSIM_ENTRY_RET(0, target, internalformat, width, format, type, data)
   return build_mipmaps(target, 1, internalformat, width, 1, format, type, data);
 }
 
 GLint Context::gluBuild2DMipmaps(GLenum target, GLint internalformat, GLsizei width, GLsizei height, GLenum format,
                                  GLenum type, const void* data) {
-  PASSIM_ENTRY_RET(0, target, internalformat, width, height, format, type, image_arg(data, width, height, format, type))
+  PASSIM_ENTRY_RET(0, target, internalformat, width, height, format, type, data)
   return build_mipmaps(target, 2, internalformat, width, height, format, type, data);
 }
 
@@ -426,14 +426,14 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
 void Context::glTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei width, GLenum format, GLenum type,
                               const void* pixels) {
   PASSIM_ENTRY(target, level, xoffset, width, format, type,
-               image_arg(pixels, width, 1, format, type))
+               pixels)
   tex_sub_image(target, 1, level, xoffset, 0, width, 1, format, type, pixels);
 }
 
 void Context::glTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width, GLsizei height,
                               GLenum format, GLenum type, const void* pixels) {
   PASSIM_ENTRY(target, level, xoffset, yoffset, width, height, format, type,
-               image_arg(pixels, width, height, format, type))
+               pixels)
   tex_sub_image(target, 2, level, xoffset, yoffset, width, height, format, type, pixels);
 }
 
@@ -731,7 +731,7 @@ void Context::glTexParameterf(GLenum target, GLenum pname, GLfloat param) {
 
 void Context::glTexParameterfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_BORDER_COLOR ? 4 : 1;
-  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(target, pname, params)
   vector_parameter(params, n, [&](const double* v) { set_tex_parameter(target, pname, v); });
 }
 
@@ -830,7 +830,7 @@ void Context::glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
 
 void Context::glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_ENV_COLOR ? 4 : 1;
-  PASSIM_ENTRY(target, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(target, pname, params)
   vector_parameter(params, n, [&](const double* v) { set_tex_env(target, pname, v); });
 }
 
@@ -868,13 +868,13 @@ void Context::glTexGenf(GLenum coord, GLenum pname, GLfloat param) {
 
 void Context::glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params) {
   const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
-  PASSIM_ENTRY(coord, pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(coord, pname, params)
   vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
 void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
   const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
-  PASSIM_ENTRY(coord, pname, ArrayArg<GLdouble>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(coord, pname, params)
   vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
 }
 
@@ -978,7 +978,7 @@ void Context::glFogi(GLenum pname, GLint param) {
 
 void Context::glFogfv(GLenum pname, const GLfloat* params) {
   const int n = pname == GL_FOG_COLOR ? 4 : 1;
-  PASSIM_ENTRY(pname, ArrayArg<GLfloat>{params, static_cast<std::size_t>(n)})
+  PASSIM_ENTRY(pname, params)
   vector_parameter(params, n, [&](const double* v) { set_fog(pname, v); });
 }
 

@@ -1,6 +1,7 @@
 // Work counters, kept per pass (group marker) and in total. Counters follow the
 // modelled machine's stage order; see docs/counters.md for each field.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -8,119 +9,82 @@
 
 namespace passim {
 
-// Every counter is a plain uint64 field listed once in for_each_field, so that
-// adding, JSON output and comparison cannot drift apart.
-struct Counters {
-  // geometry
-  std::uint64_t vertices = 0;
-  std::uint64_t primitives_in = 0;         // GL primitives: points, triangles, quads, polygons
-  std::uint64_t primitives_clipped = 0;    // cut by a clip plane (partly inside)
-  std::uint64_t primitives_clipped_out = 0;  // wholly outside the clip volume
-  std::uint64_t primitives_culled = 0;
-  std::uint64_t triangles_rasterized = 0;  // after clipping and fan decomposition
-  std::uint64_t lighting_evaluations = 0;  // vertex x face colour computations
-  // texturing
-  std::uint64_t texgen_evaluations = 0;  // per vertex and generated coordinate
-  std::uint64_t texture_lookups = 0;     // per fragment (per level for *_MIPMAP_LINEAR: see texels)
-  std::uint64_t texels_fetched = 0;      // texels read from texture memory (border colours excluded)
-  std::uint64_t texture_bits_read = 0;   // at the internal format's widths
-  std::uint64_t texture_bits_written = 0;
-  std::uint64_t fog_operations = 0;
-  // fragments
-  std::uint64_t fragments_generated = 0;
-  std::uint64_t killed_scissor = 0;
-  std::uint64_t killed_alpha = 0;
-  std::uint64_t killed_stencil = 0;
-  std::uint64_t killed_depth = 0;
-  std::uint64_t fragments_written = 0;  // passed every test (masks may still discard bits)
-  std::uint64_t blend_operations = 0;   // per fragment and draw buffer
-  std::uint64_t logic_operations = 0;
-  // planes: bits read and written at their configured widths
-  std::uint64_t color_bits_read = 0;
-  std::uint64_t color_bits_written = 0;
-  std::uint64_t depth_bits_read = 0;
-  std::uint64_t depth_bits_written = 0;
-  std::uint64_t stencil_bits_read = 0;
-  std::uint64_t stencil_bits_written = 0;
-  std::uint64_t accum_bits_read = 0;
-  std::uint64_t accum_bits_written = 0;
-  // pixel rectangles and transfer
-  std::uint64_t pixels_transferred = 0;   // groups through the pixel-transfer chain
-  std::uint64_t pixels_scale_bias = 0;
-  std::uint64_t pixels_color_matrix = 0;
-  std::uint64_t pixels_mapped = 0;  // groups through MAP_COLOR or MAP_STENCIL
-  std::uint64_t pixels_convolved = 0;
-  std::uint64_t convolution_taps = 0;               // multiply-adds (per pixel and tap)
-  std::uint64_t color_table_lookups = 0;            // pixels through COLOR_TABLE
-  std::uint64_t post_convolution_table_lookups = 0;
-  std::uint64_t post_color_matrix_table_lookups = 0;
-  std::uint64_t histogram_updates = 0;  // pixels counted
-  std::uint64_t minmax_updates = 0;
-  std::uint64_t pixels_drawn = 0;          // groups drawn by DrawPixels / CopyPixels (before zoom)
-  std::uint64_t pixels_read = 0;           // groups read by ReadPixels / CopyPixels / texture copies
-  // accumulation buffer: pixels per operation
-  std::uint64_t accum_accum_pixels = 0;
-  std::uint64_t accum_load_pixels = 0;
-  std::uint64_t accum_add_pixels = 0;
-  std::uint64_t accum_mult_pixels = 0;
-  std::uint64_t accum_return_pixels = 0;
-  // clears
-  std::uint64_t clears = 0;
-  std::uint64_t clear_pixels = 0;  // pixels x buffers cleared
+// The counter fields, listed once: the struct, every sum, comparison and serialisation
+// are made from this list (X(name) per field, in the modelled machine's stage order).
+#define PASSIM_COUNTER_FIELDS(X) \
+  /* geometry */ \
+  X(vertices) \
+  X(primitives_in) /* GL primitives: points, triangles, quads, polygons */ \
+  X(primitives_clipped) /* cut by a clip plane (partly inside) */ \
+  X(primitives_clipped_out) /* wholly outside the clip volume */ \
+  X(primitives_culled) \
+  X(triangles_rasterized) /* after clipping and fan decomposition */ \
+  X(lighting_evaluations) /* vertex x face colour computations */ \
+  /* texturing */ \
+  X(texgen_evaluations) /* per vertex and generated coordinate */ \
+  X(texture_lookups) /* per fragment (per level for *_MIPMAP_LINEAR: see texels) */ \
+  X(texels_fetched) /* texels read from texture memory (border colours excluded) */ \
+  X(texture_bits_read) /* at the internal format's widths */ \
+  X(texture_bits_written) \
+  X(fog_operations) \
+  /* fragments */ \
+  X(fragments_generated) \
+  X(killed_scissor) \
+  X(killed_alpha) \
+  X(killed_stencil) \
+  X(killed_depth) \
+  X(fragments_written) /* passed every test (masks may still discard bits) */ \
+  X(blend_operations) /* per fragment and draw buffer */ \
+  X(logic_operations) \
+  /* planes: bits read and written at their configured widths */ \
+  X(color_bits_read) \
+  X(color_bits_written) \
+  X(depth_bits_read) \
+  X(depth_bits_written) \
+  X(stencil_bits_read) \
+  X(stencil_bits_written) \
+  X(accum_bits_read) \
+  X(accum_bits_written) \
+  /* pixel rectangles and transfer */ \
+  X(pixels_transferred) /* groups through the pixel-transfer chain */ \
+  X(pixels_scale_bias) \
+  X(pixels_color_matrix) \
+  X(pixels_mapped) /* groups through MAP_COLOR or MAP_STENCIL */ \
+  X(pixels_convolved) \
+  X(convolution_taps) /* multiply-adds (per pixel and tap) */ \
+  X(color_table_lookups) /* pixels through COLOR_TABLE */ \
+  X(post_convolution_table_lookups) \
+  X(post_color_matrix_table_lookups) \
+  X(histogram_updates) /* pixels counted */ \
+  X(minmax_updates) \
+  X(pixels_drawn) /* groups drawn by DrawPixels / CopyPixels (before zoom) */ \
+  X(pixels_read) /* groups read by ReadPixels / CopyPixels / texture copies */ \
+  /* accumulation buffer: pixels per operation */ \
+  X(accum_accum_pixels) \
+  X(accum_load_pixels) \
+  X(accum_add_pixels) \
+  X(accum_mult_pixels) \
+  X(accum_return_pixels) \
+  /* clears */ \
+  X(clears) \
+  X(clear_pixels) /* pixels x buffers cleared */
 
+struct Counters {
+#define PASSIM_COUNTER_MEMBER(name) std::uint64_t name = 0;
+  PASSIM_COUNTER_FIELDS(PASSIM_COUNTER_MEMBER)
+#undef PASSIM_COUNTER_MEMBER
+
+  // f(name, member pointer) for every field, in the list's order.
   template <class F>
   static void for_each_field(F&& f) {
-#define PASSIM_COUNTER(name) f(#name, &Counters::name);
-    PASSIM_COUNTER(vertices)
-    PASSIM_COUNTER(primitives_in)
-    PASSIM_COUNTER(primitives_clipped)
-    PASSIM_COUNTER(primitives_clipped_out)
-    PASSIM_COUNTER(primitives_culled)
-    PASSIM_COUNTER(triangles_rasterized)
-    PASSIM_COUNTER(lighting_evaluations)
-    PASSIM_COUNTER(texgen_evaluations)
-    PASSIM_COUNTER(texture_lookups)
-    PASSIM_COUNTER(texels_fetched)
-    PASSIM_COUNTER(texture_bits_read)
-    PASSIM_COUNTER(texture_bits_written)
-    PASSIM_COUNTER(fog_operations)
-    PASSIM_COUNTER(fragments_generated)
-    PASSIM_COUNTER(killed_scissor)
-    PASSIM_COUNTER(killed_alpha)
-    PASSIM_COUNTER(killed_stencil)
-    PASSIM_COUNTER(killed_depth)
-    PASSIM_COUNTER(fragments_written)
-    PASSIM_COUNTER(blend_operations)
-    PASSIM_COUNTER(logic_operations)
-    PASSIM_COUNTER(color_bits_read)
-    PASSIM_COUNTER(color_bits_written)
-    PASSIM_COUNTER(depth_bits_read)
-    PASSIM_COUNTER(depth_bits_written)
-    PASSIM_COUNTER(stencil_bits_read)
-    PASSIM_COUNTER(stencil_bits_written)
-    PASSIM_COUNTER(accum_bits_read)
-    PASSIM_COUNTER(accum_bits_written)
-    PASSIM_COUNTER(pixels_transferred)
-    PASSIM_COUNTER(pixels_scale_bias)
-    PASSIM_COUNTER(pixels_color_matrix)
-    PASSIM_COUNTER(pixels_mapped)
-    PASSIM_COUNTER(pixels_convolved)
-    PASSIM_COUNTER(convolution_taps)
-    PASSIM_COUNTER(color_table_lookups)
-    PASSIM_COUNTER(post_convolution_table_lookups)
-    PASSIM_COUNTER(post_color_matrix_table_lookups)
-    PASSIM_COUNTER(histogram_updates)
-    PASSIM_COUNTER(minmax_updates)
-    PASSIM_COUNTER(pixels_drawn)
-    PASSIM_COUNTER(pixels_read)
-    PASSIM_COUNTER(accum_accum_pixels)
-    PASSIM_COUNTER(accum_load_pixels)
-    PASSIM_COUNTER(accum_add_pixels)
-    PASSIM_COUNTER(accum_mult_pixels)
-    PASSIM_COUNTER(accum_return_pixels)
-    PASSIM_COUNTER(clears)
-    PASSIM_COUNTER(clear_pixels)
-#undef PASSIM_COUNTER
+#define PASSIM_COUNTER_VISIT(name) f(#name, &Counters::name);
+    PASSIM_COUNTER_FIELDS(PASSIM_COUNTER_VISIT)
+#undef PASSIM_COUNTER_VISIT
+  }
+  static constexpr std::size_t field_count() {
+#define PASSIM_COUNTER_ONE(name) +1
+    return 0 PASSIM_COUNTER_FIELDS(PASSIM_COUNTER_ONE);
+#undef PASSIM_COUNTER_ONE
   }
 
   Counters& operator+=(const Counters& o);
@@ -130,6 +94,9 @@ struct Counters {
   std::string balance_error() const;
   nlohmann::json to_json() const;
 };
+
+// Nothing but the listed fields: a member added outside the list would be missed by every sum.
+static_assert(sizeof(Counters) == Counters::field_count() * sizeof(std::uint64_t));
 
 struct Pass {
   std::string label;  // group-marker label; "(unmarked)" for work outside any marker

@@ -68,7 +68,7 @@ TEST(TraceParse, ErrorsNameTheLine) {
   expect_error(h + "glEnableClientState(GL_VERTEX_ARRAY)\nglVertexPointer(2, GL_FLOAT, 0, {0, 0, 1, 0})\n"
                    "glDrawArrays(GL_TRIANGLES, 0, 3)\n",
                5, "reads element 2 of the vertex array, but only 16 bytes were given");
-  expect_error(h + "glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, {0, 1})\n", 3, "count is 3 but 2 indices");
+  expect_error(h + "glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, {0, 1})\n", 3, "(indices) needs 3 values, the trace gives 2");
   expect_error(h + "glColor4ub(256, 0, 0, 0)\n", 3, "argument 1 (256) is out of range");
 }
 

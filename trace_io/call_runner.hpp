@@ -29,8 +29,7 @@ class CallRunner {
   void report_errors();
 
  private:
-  void check_counts(const CallInfo& info, const std::vector<Value>& values) const;
-  void check_image_data(const std::string& fn, const std::vector<Value>& v) const;
+  void check_lengths(const CallInfo& info, const std::vector<Value>& values) const;
 
   Context& ctx_;
   bool strict_;
