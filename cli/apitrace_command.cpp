@@ -27,6 +27,7 @@ bool to_options(const ApitraceCommand& c, ApitraceOptions& o) {
     o.stencil_bits = c.stencil_bits;
     o.accum_bits = c.accum_bits;
     o.strict = c.strict;
+    o.max_memory = c.max_memory;
     o.diagnostics = c.quiet ? nullptr : &std::cerr;
     if (!c.size.empty()) parse_size(c.size, o.width, o.height);
     if (!c.snapshot.empty()) o.snapshot = CallSet::parse(c.snapshot);
@@ -56,8 +57,8 @@ int apitrace_run_command(const ApitraceCommand& c) {
   ApitraceOptions o;
   if (!to_options(c, o)) return kUsage;
   ApitraceReplay r = replay_apitrace(c.trace, o);
-  // What was replayed before an error is still written: the snapshots taken and the counters.
-  if (r.result.context) {
+  // A replay that stops with an error writes nothing (no image of a run that failed is left).
+  if (r.result.context && !r.error) {
     const fs::path out = c.out;
     fs::create_directories(out);
     std::vector<fs::path> files;
@@ -71,7 +72,6 @@ int apitrace_run_command(const ApitraceCommand& c) {
     for (const SkippedCall& s : r.unsupported)
       unsupported.push_back({{"call", s.name}, {"count", s.count}, {"first_call", s.first_call}});
     report["apitrace"] = {{"calls", r.calls}, {"frames", r.frames}, {"unsupported", unsupported}};
-    if (r.error) report["apitrace"]["stopped"] = *r.error;
     write_text_file(out / "counters.json", report.dump(2) + "\n");
     files.push_back(out / "counters.json");
     if (!c.quiet) {

@@ -1,5 +1,6 @@
 // passim run FILE.trace and passim convert FILE.trace -o FILE.pass (docs/apitrace.md).
 #pragma once
+#include <cstdint>
 #include <string>
 
 namespace passim {
@@ -14,6 +15,7 @@ struct ApitraceCommand {
   std::string snapshot_at;       // "flush"
   int bits = 0, depth_bits = -1, stencil_bits = -1, accum_bits = -1;
   bool strict = false, tiff = false, quiet = false;
+  std::uint64_t max_memory = std::uint64_t{1} << 30;  // --max-memory
 };
 
 int apitrace_run_command(const ApitraceCommand& c);

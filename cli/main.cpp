@@ -50,17 +50,31 @@ void print_counters_summary(const nlohmann::json& report) {
   }
 }
 
-int run_command(const fs::path& trace, const fs::path& out, bool strict, const std::string& expect,
-                const std::string& record, bool tiff, bool write_expected, bool quiet) {
+struct RunCommand {
+  fs::path trace, out = "out";
+  bool strict = false, tiff = false, write_expected = false, quiet = false;
+  std::string expect, record;
+  std::uint64_t max_memory = kDefaultMemoryBudget;
+  std::vector<fs::path> allow_files;
+};
+
+int run_command(const RunCommand& c) {
+  const fs::path& trace = c.trace;
+  const fs::path& out = c.out;
+  const bool quiet = c.quiet;
+  const std::string& expect = c.expect;
+  const std::string& record = c.record;
   std::ostringstream recorded;
   TraceWriter writer(recorded);
   ReplayOptions options;
-  options.strict = strict;
+  options.strict = c.strict;
   options.diagnostics = &std::cerr;
+  options.max_memory = c.max_memory;
+  options.allow_files = c.allow_files;
   if (!record.empty()) options.record = &writer;
   RunOutput result;
   try {
-    result = run_trace_to_dir(trace, out, options, tiff);
+    result = run_trace_to_dir(trace, out, options, c.tiff);
     if (!record.empty()) write_text_file(record, recorded.str());
   } catch (const TraceError& e) {
     std::cerr << "passim: " << e.what() << "\n";
@@ -75,7 +89,7 @@ int run_command(const fs::path& trace, const fs::path& out, bool strict, const s
     print_counters_summary(result.report);
     for (const auto& w : result.report["warnings"]) std::cerr << "passim: warning: " << w.get<std::string>() << "\n";
   }
-  if (write_expected) {
+  if (c.write_expected) {
     const fs::path path = out / "expected.json";
     write_text_file(path, expectation_of(result.report).dump(2) + "\n");
     if (!quiet) std::cout << "  wrote " << path.string() << "\n";
@@ -312,8 +326,7 @@ int demo_command(const fs::path& out, const std::string& scene) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  passim::keep_large_blocks_in_the_heap();
+int dispatch(int argc, char** argv) {
   CLI::App app{"passim: a bit-accurate model of the OpenGL 1.2 + imaging pipeline, for multipass algorithms"};
   app.require_subcommand(0, 1);
   app.footer("Exit status: 0 ok, 1 trace or run error (message names file:line), 2 usage, "
@@ -321,17 +334,30 @@ int main(int argc, char** argv) {
 
   auto* run = app.add_subcommand(
       "run", "Replay a .pass trace (its @output images and counters.json) or an apitrace .trace (docs/apitrace.md)");
-  std::string trace_file, out_dir = "out", expect, record;
-  bool strict = false, tiff = false, write_expected = false, quiet = false;
+  RunCommand rc;
+  std::string trace_file, out_dir = "out";
   ApitraceCommand ac;
   run->add_option("trace", trace_file, "The .pass or apitrace .trace file to replay")->required();
   run->add_option("--out,-o", out_dir, "Directory for images and counters.json")->capture_default_str();
-  run->add_flag("--strict", strict, "Make any GL error fatal (exit 1)");
-  run->add_option("--expect", expect, "Check image hashes and counters against this JSON file (exit 3 if they differ)");
-  run->add_option("--record", record, "Also write the replay, re-recorded, as a canonical .pass trace");
-  run->add_flag("--tiff", tiff, "Write colour images wider than 8 bits as 16-bit TIFF instead of 16-bit PNG");
-  run->add_flag("--write-expected", write_expected, "Also write DIR/expected.json (hashes and counters of this run)");
-  run->add_flag("--quiet,-q", quiet, "Print nothing but errors");
+  run->add_flag("--strict", rc.strict, "Make any GL error fatal (exit 1)");
+  run->add_option("--expect", rc.expect, "Check image hashes and counters against this JSON file (exit 3 if they differ)");
+  run->add_option("--record", rc.record, "Also write the replay, re-recorded, as a canonical .pass trace");
+  run->add_flag("--tiff", rc.tiff, "Write colour images wider than 8 bits as 16-bit TIFF instead of 16-bit PNG");
+  run->add_flag("--write-expected", rc.write_expected, "Also write DIR/expected.json (hashes and counters of this run)");
+  run->add_flag("--quiet,-q", rc.quiet, "Print nothing but errors");
+  // Input from strangers (docs/hostile-input.md): what a replay may take and read.
+  auto input_limits = [](CLI::App* cmd, std::uint64_t& max_memory) {
+    cmd->add_option("--max-memory", max_memory,
+                    "Memory budget of the run, e.g. 512MiB or 2G: a GL allocation past it raises GL_OUT_OF_MEMORY, "
+                    "anything else past it ends the run")
+        ->transform(CLI::AsSizeValue(false))
+        ->default_str("1GiB");
+  };
+  input_limits(run, rc.max_memory);
+  run->add_option("--allow-files", rc.allow_files,
+                  "A folder side files (file(...), @mesh) may also come from; by default only the trace's own "
+                  "folder (repeatable)")
+      ->check(CLI::ExistingDirectory);
   // apitrace traces only: the framebuffer a .pass states in its header.
   auto apitrace_options = [&ac](CLI::App* cmd) {
     const char* group = "apitrace .trace options";
@@ -356,6 +382,7 @@ int main(int argc, char** argv) {
   convert->add_flag("--strict", ac.strict, "Make any unsupported call or GL error fatal (exit 1)");
   convert->add_flag("--quiet,-q", ac.quiet, "Print nothing but errors");
   apitrace_options(convert);
+  input_limits(convert, ac.max_memory);
 
   auto* info = app.add_subcommand("info", "List machine profiles with their widths and limits");
   bool calls = false;
@@ -491,16 +518,21 @@ int main(int argc, char** argv) {
   }
   if (*run) {
     if (looks_like_apitrace(trace_file)) {
-      if (!expect.empty() || !record.empty() || write_expected) {
+      if (!rc.expect.empty() || !rc.record.empty() || rc.write_expected) {
         std::cerr << "passim run: --expect, --record and --write-expected are for .pass traces; "
                      "'passim convert' turns a .trace into one\n";
         return kUsage;
       }
       ac.trace = trace_file;
       ac.out = out_dir;
-      ac.strict = strict;
-      ac.tiff = tiff;
-      ac.quiet = quiet;
+      ac.strict = rc.strict;
+      ac.tiff = rc.tiff;
+      ac.quiet = rc.quiet;
+      ac.max_memory = rc.max_memory;
+      if (!rc.allow_files.empty()) {
+        std::cerr << "passim run: --allow-files is for .pass traces (an apitrace trace reads no side files)\n";
+        return kUsage;
+      }
       return apitrace_run_command(ac);
     }
     for (const char* o : {"--bits", "--depth-bits", "--stencil-bits", "--accum-bits", "--size", "--profile",
@@ -509,7 +541,9 @@ int main(int argc, char** argv) {
         std::cerr << "passim run: " << o << " is for apitrace traces; a .pass trace states its settings in its header\n";
         return kUsage;
       }
-    return run_command(trace_file, out_dir, strict, expect, record, tiff, write_expected, quiet);
+    rc.trace = trace_file;
+    rc.out = out_dir;
+    return run_command(rc);
   }
   if (*convert) return apitrace_convert_command(ac);
   if (*info) return info_command(calls);
@@ -558,4 +592,20 @@ int main(int argc, char** argv) {
     return demo_command(demo_out, demo_scene);
   }
   return kOk;
+}
+
+// The one error boundary (docs/hostile-input.md): whatever a command throws ends it with exit 1
+// and a message, never an abort.
+int main(int argc, char** argv) {
+  passim::keep_large_blocks_in_the_heap();
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "passim: out of memory (the machine refused an allocation; --max-memory sets the run's budget)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "passim: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "passim: internal error: an unknown exception\n";
+  }
+  return kRunError;
 }

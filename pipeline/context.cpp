@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "pipeline/checked_size.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "stages/accumulate.hpp"
@@ -16,8 +17,16 @@
 
 namespace passim {
 
-Context::Context(const FramebufferConfig& config, const MachineProfile& profile)
-    : fb_(config), profile_(profile), scratch_(std::make_unique<Scratch>(fb_, config.width)) {
+namespace {
+// The framebuffer's planes charged to the budget before they are allocated.
+const FramebufferConfig& charge_planes(MemoryBudget& budget, const FramebufferConfig& config) {
+  budget.charge(config.plane_bytes(), fmt::format("a {}x{} framebuffer", config.width, config.height));
+  return config;
+}
+}  // namespace
+
+Context::Context(const FramebufferConfig& config, const MachineProfile& profile, std::uint64_t memory_limit)
+    : memory_(memory_limit), fb_(charge_planes(memory_, config)), profile_(profile), scratch_(std::make_unique<Scratch>(fb_, config.width)) {
   viewport_.width = config.width;
   viewport_.height = config.height;
   fragment_.scissor_width = config.width;
@@ -70,6 +79,16 @@ void Context::set_error(GLenum error) {
   error_log_.push_back(GlErrorRecord{current_call_, error, where_});
 }
 
+bool Context::rectangle_fits_in_memory(std::int64_t width, std::int64_t height) {
+  if (width < 0 || height < 0) return true;  // INVALID_VALUE, raised by the call's own checks
+  try {
+    if ((CheckedSize(width) * height * kRectangleBytesPerPixel).value() <= memory_.left()) return true;
+  } catch (const SizeOverflow&) {
+  }
+  set_error(GL_OUT_OF_MEMORY);
+  return false;
+}
+
 GLenum Context::glGetError() {
   PASSIM_ENTRY_RET(GL_NO_ERROR)  // between Begin/End: INVALID_OPERATION, returns 0
   GLenum e = error_;
@@ -85,7 +104,29 @@ void Context::warn_once(const std::string& message) {
 
 namespace {
 
-// The client-array elements a call that reads the arrays reads, in order (calls.hpp).
+// The largest client-array element a call that reads the arrays reads (calls.hpp), in 64 bits;
+// -1 when it reads none.
+std::int64_t last_array_element(const CallInfo& info, const std::vector<Value>& values) {
+  auto arg = [&](const char* name) { return values[static_cast<std::size_t>(info.param_index(name))]; };
+  if (info.param_index("i") >= 0) return arg("i").i;
+  if (info.param_index("indices") >= 0) {
+    const Value& v = arg("indices");
+    const std::byte* p = v.bytes ? v.bytes->data() : nullptr;
+    std::int64_t last = -1;
+    for (std::size_t k = 0; p && k < v.count; ++k) {
+      std::uint32_t idx = 0;
+      if (v.elem_type == GL_UNSIGNED_BYTE) idx = static_cast<std::uint8_t>(p[k]);
+      else if (v.elem_type == GL_UNSIGNED_SHORT) { std::uint16_t s; std::memcpy(&s, p + 2 * k, 2); idx = s; }
+      else std::memcpy(&idx, p + 4 * k, 4);
+      last = std::max<std::int64_t>(last, idx);
+    }
+    return last;
+  }
+  return arg("count").i > 0 ? arg("first").i + arg("count").i - 1 : -1;
+}
+
+// The client-array elements such a call reads, in order; their count has been bounded by the
+// array extents (check_array_bounds of last_array_element) before this is called.
 std::vector<int> array_elements(const CallInfo& info, const std::vector<Value>& values) {
   std::vector<int> elements;
   if (const int i = info.param_index("i"); i >= 0) {
@@ -111,16 +152,18 @@ std::vector<int> array_elements(const CallInfo& info, const std::vector<Value>& 
 }  // namespace
 
 bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values) {
+  // A call that reads the client arrays reads nothing past the data a trace gave for them
+  // (before anything is built from its count).
+  const std::int64_t last_element = info.reads_client_arrays ? last_array_element(info, values) : -1;
+  if (last_element >= 0 && (sink_ || (compiling_list_ != 0 && info.compiled_into_lists)))
+    check_array_bounds(last_element);
   if (sink_ && !info.query && !info.recorded_at_draw()) {
-    if (info.reads_client_arrays) {
-      // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
-      const std::vector<int> elements = array_elements(info, values);
-      const int max_index = elements.empty() ? -1 : *std::max_element(elements.begin(), elements.end());
-      if (max_index >= 0) record_client_arrays(max_index);
-    }
+    // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
+    if (last_element >= 0) record_client_arrays(static_cast<int>(last_element));
     sink_->on_call(Call{&info, values});
   }
   if (compiling_list_ == 0 || !info.compiled_into_lists) return false;
+  const std::size_t compiled_before = compiling_calls_.size();
   if (info.reads_client_arrays) {
     // §5.4: vertex-array commands are compiled with their data dereferenced: as the
     // equivalent Begin / per-element calls / End (ArrayElement: the per-element calls alone).
@@ -138,6 +181,16 @@ bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values
     }
   } else {
     compiling_calls_.push_back(Call{&info, std::move(values)});
+  }
+  // The list's new calls are charged to the budget (§2.5: OUT_OF_MEMORY, the call not compiled).
+  std::uint64_t added = 0;
+  for (std::size_t k = compiled_before; k < compiling_calls_.size(); ++k)
+    added += sizeof(Call) + call_bytes(compiling_calls_[k]);
+  if (memory_.try_charge(added)) {
+    compiling_bytes_ += added;
+  } else {
+    compiling_calls_.resize(compiled_before);
+    set_error(GL_OUT_OF_MEMORY);
   }
   return compile_mode_ == GL_COMPILE;
 }

@@ -15,6 +15,7 @@
 #include "pipeline/counters.hpp"
 #include "pipeline/framebuffer.hpp"
 #include "pipeline/gl.hpp"
+#include "pipeline/memory_budget.hpp"
 #include "pipeline/profile.hpp"
 #include "pipeline/state.hpp"
 #include "pipeline/texture.hpp"
@@ -51,7 +52,10 @@ struct ClientDataError : std::runtime_error {
 
 class Context {
  public:
-  explicit Context(const FramebufferConfig& config, const MachineProfile& profile = machine_profiles().front());
+  // The planes are charged to a memory budget of `memory_limit` bytes first (BudgetExceeded
+  // when they do not fit; memory_budget.hpp).
+  explicit Context(const FramebufferConfig& config, const MachineProfile& profile = machine_profiles().front(),
+                   std::uint64_t memory_limit = kDefaultMemoryBudget);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -326,6 +330,9 @@ class Context {
   // The what-if study's stage removal (not GL state; see PixelTransferState::Removed).
   void remove_stages(const PixelTransferState::Removed& removed) { transfer_.removed = removed; }
   const MachineProfile& profile() const { return profile_; }
+  // The run's memory budget: what the GL holds for the application is charged to it.
+  MemoryBudget& memory() { return memory_; }
+  const MemoryBudget& memory() const { return memory_; }
   const std::vector<Pass>& passes() const { return passes_; }
   Counters total_counters() const;
   const std::vector<GlErrorRecord>& error_log() const { return error_log_; }
@@ -368,6 +375,11 @@ class Context {
  private:
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
   void set_error(GLenum error);
+  // §2.5: a call whose working buffers — `pixels` pixels of a rectangle as the pixel path holds
+  // them — would pass what is left of the memory budget raises OUT_OF_MEMORY (false: the call
+  // must then do nothing).
+  bool rectangle_fits_in_memory(std::int64_t width, std::int64_t height);
+  static constexpr std::uint64_t kRectangleBytesPerPixel = 48;  // reals (32) + codes (8) + a copy (8)
   // The scalar (glXxxi/f) and vector (glXxxfv) forms of a parameter call: a scalar call with a
   // vector-valued pname is INVALID_ENUM; both hand the setter four doubles.
   template <class Setter>
@@ -422,7 +434,7 @@ class Context {
   TriangleOptions polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const;
   void draw_point(const ProcessedVertex& v);
   void array_element_impl(int i);
-  void check_array_bounds(int max_index) const;
+  void check_array_bounds(std::int64_t max_index) const;
   void compile_array_element(int i, std::vector<Call>& out) const;
   void execute_list(GLuint list);
   // A glBegin(GL_TRIANGLES) ... glEnd block of a display list holding only glNormal3d and
@@ -614,6 +626,7 @@ class Context {
   void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);
   void read_framebuffer_stencil(int x, int y, int width, int height, std::vector<double>& out) const;
 
+  MemoryBudget memory_;  // before fb_: the planes are charged before they are allocated
   Framebuffer fb_;
   MachineProfile profile_;
   std::array<int, 4> fragment_bits_{};
@@ -680,6 +693,16 @@ class Context {
 
   // display lists
   std::map<GLuint, std::vector<Call>> lists_;
+  // Names GenLists handed out that hold no list yet: runs [first, last] (a huge range is one run).
+  std::map<GLuint, GLuint> empty_lists_;
+  bool list_name_used(GLuint name) const;
+  // Bytes a list or call holds (charged to the memory budget).
+  static std::uint64_t list_bytes(const std::vector<Call>& calls);
+  static std::uint64_t call_bytes(const Call& call);
+  std::uint64_t compiling_bytes_ = 0;  // charged for the list being compiled
+  // Lists executed since the outermost CallList (the cap on lists that call lists).
+  std::uint64_t lists_executed_ = 0;
+  static constexpr std::uint64_t kMaxListExecutions = std::uint64_t{1} << 20;
   GLuint list_base_ = 0;
   std::map<GLuint, std::vector<TriangleBatch>> list_batches_;  // of lists that have some
   GLuint compiling_list_ = 0;

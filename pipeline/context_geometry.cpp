@@ -9,6 +9,7 @@
 
 #include <atomic>
 
+#include "pipeline/checked_size.hpp"
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
@@ -971,7 +972,7 @@ Vec4 Context::array_value_at(const ClientArray& a, int i, bool normalise) const 
   return out;
 }
 
-void Context::check_array_bounds(int max_index) const {
+void Context::check_array_bounds(std::int64_t max_index) const {
   auto check = [&](const ClientArray& a, const char* name) {
     if (!a.enabled) return;
     // An enabled array without a pointer: undefined in GL (a crash on real drivers).
@@ -979,10 +980,15 @@ void Context::check_array_bounds(int max_index) const {
       throw ClientDataError(fmt::format("{} draws with the {} array enabled but no {} pointer given", current_call_,
                                         name, name));
     if (a.extent == SIZE_MAX) return;
-    const std::size_t elem = static_cast<std::size_t>(type_size(a.type) * a.size);
-    const std::size_t stride = a.stride ? static_cast<std::size_t>(a.stride) : elem;
-    const std::size_t need = static_cast<std::size_t>(max_index) * stride + elem;
-    if (!a.pointer || need > a.extent)
+    const CheckedSize elem = CheckedSize(type_size(a.type)) * a.size;
+    const CheckedSize stride = a.stride ? CheckedSize(a.stride) : elem;
+    bool inside = max_index >= 0 && max_index <= std::numeric_limits<int>::max();
+    try {
+      inside = inside && CheckedSize(max_index) * stride + elem <= CheckedSize(a.extent);
+    } catch (const SizeOverflow&) {
+      inside = false;
+    }
+    if (!inside)
       throw ClientDataError(fmt::format("{} reads element {} of the {} array, but only {} bytes were given",
                                         current_call_, max_index, name, a.extent));
   };
@@ -1081,7 +1087,7 @@ void Context::glDrawArrays(GLenum mode, GLint first, GLsizei count) {
   if (!is_primitive_mode(mode)) return set_error(GL_INVALID_ENUM);
   if (count < 0 || first < 0) return set_error(GL_INVALID_VALUE);
   if (count == 0) return;
-  check_array_bounds(first + count - 1);
+  check_array_bounds(std::int64_t{first} + count - 1);
   const ArraysScope arrays(drawing_arrays_);
   glBegin(mode);
   for (GLint k = 0; k < count; ++k) array_element_impl(first + k);
@@ -1096,14 +1102,14 @@ void Context::glDrawElements(GLenum mode, GLsizei count, GLenum type, const void
   if (count < 0) return set_error(GL_INVALID_VALUE);
   if (count == 0 || !indices) return;
   std::vector<int> idx(static_cast<std::size_t>(count));
-  int max_index = 0;
+  std::int64_t max_index = 0;
   for (GLsizei k = 0; k < count; ++k) {
     std::uint32_t v;
     if (type == GL_UNSIGNED_BYTE) v = static_cast<const std::uint8_t*>(indices)[k];
     else if (type == GL_UNSIGNED_SHORT) v = static_cast<const std::uint16_t*>(indices)[k];
     else v = static_cast<const std::uint32_t*>(indices)[k];
-    idx[static_cast<std::size_t>(k)] = static_cast<int>(v);
-    max_index = std::max(max_index, static_cast<int>(v));
+    idx[static_cast<std::size_t>(k)] = static_cast<int>(v);  // ≤ INT_MAX once the bounds are checked
+    max_index = std::max<std::int64_t>(max_index, v);
   }
   check_array_bounds(max_index);
   const ArraysScope arrays(drawing_arrays_);

@@ -6,6 +6,8 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
+#include <limits>
 #include <map>
 
 #include "pipeline/context.hpp"
@@ -21,11 +23,16 @@ void Context::glNewList(GLuint list, GLenum mode) {
   compiling_list_ = list;
   compile_mode_ = mode;
   compiling_calls_.clear();
+  compiling_bytes_ = 0;
 }
 
 void Context::glEndList() {
   PASSIM_ENTRY()
   if (compiling_list_ == 0) return set_error(GL_INVALID_OPERATION);
+  if (auto old = lists_.find(compiling_list_); old != lists_.end()) memory_.release(list_bytes(old->second));
+  memory_.release(compiling_bytes_);  // charged while compiling; charged again below as the list's
+  compiling_bytes_ = 0;
+  memory_.charge(list_bytes(compiling_calls_), "a display list");  // fits: it was charged as it grew
   lists_[compiling_list_] = std::move(compiling_calls_);
   compiling_calls_.clear();
   find_triangle_batches(compiling_list_);
@@ -83,12 +90,36 @@ void Context::find_triangle_batches(GLuint list) {
   else list_batches_[list] = std::move(batches);
 }
 
+std::uint64_t Context::list_bytes(const std::vector<Call>& calls) {
+  std::uint64_t bytes = calls.capacity() * sizeof(Call);
+  for (const Call& c : calls) bytes += call_bytes(c);
+  return bytes;
+}
+
+std::uint64_t Context::call_bytes(const Call& call) {
+  std::uint64_t bytes = call.args.capacity() * sizeof(Value);
+  for (const Value& v : call.args) bytes += (v.bytes ? v.bytes->size() : 0) + (v.text ? v.text->size() : 0);
+  return bytes;
+}
+
 void Context::execute_list(GLuint list) {
   auto it = lists_.find(list);
   if (it == lists_.end()) return;  // §5.4: an undefined list does nothing
   // §5.4: beyond MAX_LIST_NESTING, CallList is ignored.
   if (list_nesting_ >= profile_.limits.max_list_nesting) return;
-  ++list_nesting_;
+  // Lists that call lists multiply work (a list calling another twice, 64 deep, is 2^64 calls):
+  // one outermost call may execute at most kMaxListExecutions lists. Not a GL rule; a run that
+  // passes it ends with a message (docs/hostile-input.md).
+  if (list_nesting_ == 0) lists_executed_ = 0;
+  if (++lists_executed_ > kMaxListExecutions)
+    throw ClientDataError(fmt::format("display lists: one call executed more than {} lists (lists that call lists "
+                                      "multiply work); passim stops here",
+                                      kMaxListExecutions));
+  struct Nesting {  // one level deeper while the list runs, also when it throws
+    int& depth;
+    explicit Nesting(int& d) : depth(++d) {}
+    ~Nesting() { --depth; }
+  } nesting(list_nesting_);
   // Copy-free: a list cannot be redefined while it runs (NewList is not compiled).
   const std::vector<Call>& calls = it->second;
   const auto batches = list_batches_.find(list);
@@ -103,7 +134,6 @@ void Context::execute_list(GLuint list) {
     }
     for (; next < calls.size(); ++next) calls[next].info->invoke(*this, calls[next].args);
   }
-  --list_nesting_;
 }
 
 void Context::glCallList(GLuint list) {
@@ -134,6 +164,17 @@ void Context::glCallLists(GLsizei n, GLenum type, const void* lists) {
   }
 }
 
+namespace {
+// The end (one past) of a run of names, in 64 bits: list + range may pass 2^32.
+std::uint64_t names_end(GLuint first, std::uint64_t range) { return std::uint64_t{first} + range; }
+}  // namespace
+
+bool Context::list_name_used(GLuint name) const {
+  if (lists_.count(name)) return true;
+  auto it = empty_lists_.upper_bound(name);  // the first run starting after `name`
+  return it != empty_lists_.begin() && std::prev(it)->second >= name;
+}
+
 GLuint Context::glGenLists(GLsizei range) {
   PASSIM_ENTRY_RET(0, range)
   if (range < 0) {
@@ -141,27 +182,60 @@ GLuint Context::glGenLists(GLsizei range) {
     return 0;
   }
   if (range == 0) return 0;
-  // The first run of `range` unused names; names handed out count as used (empty lists).
-  GLuint first = 1;
-  for (auto it = lists_.lower_bound(first); it != lists_.end() && it->first < first + static_cast<GLuint>(range);
-       it = lists_.lower_bound(first))
-    first = it->first + 1;
-  for (GLuint k = 0; k < static_cast<GLuint>(range); ++k) lists_[first + k];
-  return first;
+  // §5.4: `range` contiguous empty lists, the first run of unused names. They are kept as runs
+  // of names [first, last], not one list each, so a huge range costs nothing.
+  std::uint64_t first = 1;
+  for (;;) {
+    const std::uint64_t end = first + static_cast<std::uint64_t>(range);
+    if (end - 1 > std::numeric_limits<GLuint>::max()) return 0;  // no such run of names
+    std::uint64_t blocker = end;  // the first used name in [first, end), if any
+    auto list = lists_.lower_bound(static_cast<GLuint>(first));
+    if (list != lists_.end() && list->first < blocker) blocker = list->first;
+    auto run = empty_lists_.upper_bound(static_cast<GLuint>(first));
+    if (run != empty_lists_.begin() && std::prev(run)->second >= first) blocker = first;
+    else if (run != empty_lists_.end() && run->first < blocker) blocker = run->first;
+    if (blocker == end) break;
+    // Past the used name (and the run holding it).
+    first = blocker + 1;
+    auto holder = empty_lists_.upper_bound(static_cast<GLuint>(blocker));
+    if (holder != empty_lists_.begin() && std::prev(holder)->second >= blocker)
+      first = std::uint64_t{std::prev(holder)->second} + 1;
+  }
+  empty_lists_[static_cast<GLuint>(first)] = static_cast<GLuint>(first + static_cast<std::uint64_t>(range) - 1);
+  return static_cast<GLuint>(first);
 }
 
 void Context::glDeleteLists(GLuint list, GLsizei range) {
   PASSIM_ENTRY(list, range)
   if (range < 0) return set_error(GL_INVALID_VALUE);
-  for (GLsizei k = 0; k < range; ++k) {
-    lists_.erase(list + static_cast<GLuint>(k));
-    list_batches_.erase(list + static_cast<GLuint>(k));
+  if (range == 0) return;
+  // Only the lists that exist are visited (not every name of the range).
+  const std::uint64_t end = names_end(list, static_cast<std::uint64_t>(range));
+  for (auto it = lists_.lower_bound(list); it != lists_.end() && it->first < end;) {
+    memory_.release(list_bytes(it->second));
+    list_batches_.erase(it->first);
+    it = lists_.erase(it);
   }
+  // Runs of empty names: cut [list, end) out of each run that meets it.
+  std::vector<std::pair<GLuint, GLuint>> kept;
+  auto it = empty_lists_.upper_bound(list);
+  if (it != empty_lists_.begin()) --it;
+  while (it != empty_lists_.end() && it->first < end) {
+    const auto [lo, hi] = *it;
+    if (hi >= list) {
+      if (lo < list) kept.emplace_back(lo, list - 1);
+      if (std::uint64_t{hi} >= end) kept.emplace_back(static_cast<GLuint>(end), hi);
+      it = empty_lists_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  for (const auto& [lo, hi] : kept) empty_lists_[lo] = hi;
 }
 
 GLboolean Context::glIsList(GLuint list) {
   PASSIM_ENTRY_RET(GL_FALSE, list)
-  return lists_.count(list) ? GL_TRUE : GL_FALSE;
+  return list_name_used(list) ? GL_TRUE : GL_FALSE;
 }
 
 void Context::glListBase(GLuint base) {

@@ -503,6 +503,7 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
   }
   if (format == GL_STENCIL_INDEX) {
     if (!raster_.valid || width == 0 || height == 0 || !pixels) return;
+    if (!rectangle_fits_in_memory(width, height)) return;
     std::vector<double> indices;
     unpack_indices(pixels, width, height, format, type, pixel_store_.unpack, indices);
     transfer_stencil(indices, transfer_, counters());
@@ -512,6 +513,7 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
   if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   if (!raster_.valid || width == 0 || height == 0 || !pixels) return;  // §3.6.4: invalid raster position: nothing
+  if (!rectangle_fits_in_memory(width, height)) return;
   if (format == GL_DEPTH_COMPONENT) {
     std::vector<double> depth;
     unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
@@ -534,7 +536,7 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   if (format == GL_COLOR_INDEX) return set_error(GL_INVALID_OPERATION);  // RGBA mode
   if (format == GL_STENCIL_INDEX) {
     if (fb_.config.stencil_bits == 0) return set_error(GL_INVALID_OPERATION);
-    if (width == 0 || height == 0) return;
+    if (width == 0 || height == 0 || !rectangle_fits_in_memory(width, height)) return;
     Counters& c = counters();
     c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     std::vector<double> indices;
@@ -546,7 +548,7 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   }
   if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
-  if (width == 0 || height == 0) return;
+  if (width == 0 || height == 0 || !rectangle_fits_in_memory(width, height)) return;
   Counters& c = counters();
   c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   std::vector<Rgba> out;
@@ -575,6 +577,7 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   if ((type == GL_DEPTH && fb_.config.depth_bits == 0) || (type == GL_STENCIL && fb_.config.stencil_bits == 0))
     return set_error(GL_INVALID_OPERATION);
   if (!raster_.valid || width == 0 || height == 0) return;
+  if (!rectangle_fits_in_memory(width, height)) return;
   Counters& c = counters();
   c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   // A22: the whole source is read (through the transfer operations, once) before drawing.

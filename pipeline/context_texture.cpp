@@ -83,6 +83,8 @@ void Context::glDeleteTextures(GLsizei n, const GLuint* textures) {
     // §3.8.12: a deleted bound texture reverts the binding to 0.
     if (textures_.bound_1d == name) textures_.bound_1d = 0;
     if (textures_.bound_2d == name) textures_.bound_2d = 0;
+    if (auto it = textures_.objects.find(name); it != textures_.objects.end())
+      for (const TextureLevel& l : it->second.levels) memory_.release(l.bytes());
     textures_.objects.erase(name);
     textures_.reserved.erase(name);
   }
@@ -247,7 +249,16 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   if (static_cast<std::int64_t>(width) * (dims == 2 ? height : 1) > profile_.limits.max_texture_texels)
     return set_error(GL_OUT_OF_MEMORY);
   if ((format == GL_DEPTH_COMPONENT) != (fmt_info->base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
+  if (pixels && !rectangle_fits_in_memory(source_width, source_height)) return;
   TextureObject& tex = *texture_for(target);
+  // §2.5: the level is charged to the budget (the level it replaces released): OUT_OF_MEMORY
+  // when it does not fit, and the old level stays.
+  const std::uint64_t old_bytes = static_cast<std::size_t>(level) < tex.levels.size()
+                                      ? tex.levels[static_cast<std::size_t>(level)].bytes()
+                                      : 0;
+  const std::uint64_t new_bytes = TextureLevel::bytes_for(width, dims == 2 ? height : 1);
+  if (new_bytes > old_bytes && !memory_.try_charge(new_bytes - old_bytes)) return set_error(GL_OUT_OF_MEMORY);
+  if (new_bytes < old_bytes) memory_.release(old_bytes - new_bytes);
   tex.target = target;
   if (tex.levels.size() <= static_cast<std::size_t>(level)) tex.levels.resize(static_cast<std::size_t>(level) + 1);
   TextureLevel& l = tex.levels[static_cast<std::size_t>(level)];
@@ -409,6 +420,7 @@ void Context::tex_sub_image(GLenum target, int dims, GLint level, GLint xoffset,
   const int b = l.border;
   if ((format == GL_DEPTH_COMPONENT) != (l.format.base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
   if (width == 0 || height == 0 || !pixels) return;
+  if (!rectangle_fits_in_memory(source_width, source_height)) return;
   std::vector<Rgba> rgba;
   std::vector<double> depth;
   if (format == GL_DEPTH_COMPONENT) {
@@ -561,6 +573,7 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   // §3.8.2: internalformat 1-4 are not accepted by CopyTexImage.
   if (f && internalformat >= 1 && internalformat <= 4) return set_error(GL_INVALID_VALUE);
   if (f && f->base == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
+  if (!rectangle_fits_in_memory(width, height)) return;
   const std::size_t errors = error_log_.size();
   // A colour copy stores every texel unless a histogram or minmax sink consumes the pixels
   // or a convolution changes the size (then the level starts from zeros).

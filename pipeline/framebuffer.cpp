@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "pipeline/checked_size.hpp"
+
 #include <algorithm>
 
 namespace passim {
@@ -20,6 +22,15 @@ std::string FramebufferConfig::validate(int max_size) const {
   if (accum_bits < 0 || accum_bits > 32) return fmt::format("accumulation width {} is outside 0..32", accum_bits);
   if (accum_bits != 0 && accum_bits < 2) return "accumulation width must be 0 (none) or at least 2";
   return {};
+}
+
+std::uint64_t FramebufferConfig::plane_bytes() const {
+  const CheckedSize pixels = CheckedSize(width) * height;
+  CheckedSize per_pixel = CheckedSize(4 * sizeof(std::uint16_t)) * (double_buffer ? 2 : 1);
+  if (depth_bits > 0) per_pixel += sizeof(std::uint32_t);
+  if (stencil_bits > 0) per_pixel += sizeof(std::uint8_t);
+  if (accum_bits > 0) per_pixel += 4 * sizeof(std::int32_t);
+  return (pixels * per_pixel).value();
 }
 
 int FramebufferConfig::default_accum_bits(const std::array<int, 4>& color_bits) {

@@ -18,6 +18,8 @@ struct FramebufferConfig {
   int accum_bits = 16;  // per component; 0 = no accumulation buffer
   bool double_buffer = true;
 
+  // The bytes the planes take (as Framebuffer stores them), in checked arithmetic.
+  std::uint64_t plane_bytes() const;
   // Empty when valid, else a message naming the offending setting.
   std::string validate(int max_size) const;
   // A21: 16-bit accumulation for <=8-bit colour, 24 for 12-bit: twice the widest channel.

@@ -71,6 +71,12 @@ struct TextureLevel {
     replace_codes.clear();
   }
   int bits_per_texel() const;
+  // What a level of width x height texels holds for the memory budget: its codes (16 bytes a
+  // texel) and the reals and replace codes made from them when it is sampled (32 + 8).
+  static std::uint64_t bytes_for(std::int64_t width, std::int64_t height) {
+    return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * 56u;
+  }
+  std::uint64_t bytes() const { return defined() ? bytes_for(width, height) : 0; }
 };
 
 // Table 6.18 (texture objects).

@@ -1,12 +1,14 @@
 #include "programs/scene.hpp"
 
 #include <fmt/format.h>
-#include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
+
+#include "pipeline/memory_budget.hpp"
+#include "trace_io/obj_file.hpp"
 
 namespace passim {
 namespace {
@@ -214,45 +216,30 @@ Scene edges_scene() {
 }
 
 Scene obj_scene(const std::string& file) {
-  tinyobj::ObjReader reader;
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  if (!reader.ParseFromFile(file, config)) {
-    std::string why = reader.Error();
-    while (!why.empty() && why.back() == '\n') why.pop_back();
-    throw std::runtime_error(fmt::format("{}: cannot read the OBJ file: {}", file, why.empty() ? "no reason given" : why));
+  // The user's own file, named on the command line: its folder is where it (and its material
+  // library) may be read from.
+  const std::filesystem::path path(file);
+  std::vector<ObjShape> shapes;
+  try {
+    shapes = read_obj(SideFiles(path.parent_path()), path.filename().string(), kDefaultMemoryBudget);
+  } catch (const std::runtime_error& e) {  // ObjError, SideFileRefused
+    throw std::runtime_error(fmt::format("{}: {}", file, e.what()));
   }
-  const auto& attrib = reader.GetAttrib();
-  const auto& materials = reader.GetMaterials();
   Scene s;
-  s.name = std::filesystem::path(file).filename().string();
+  s.name = path.filename().string();
   s.description = fmt::format("OBJ file {} on a ground plane", file);
   glm::dvec3 lo(1e300), hi(-1e300);
-  for (const auto& shape : reader.GetShapes()) {
+  for (const ObjShape& shape : shapes) {
     MeshBuilder b(shape.name.empty() ? "object" : shape.name, {0.8f, 0.8f, 0.8f});
-    if (!shape.mesh.material_ids.empty() && shape.mesh.material_ids[0] >= 0 &&
-        static_cast<std::size_t>(shape.mesh.material_ids[0]) < materials.size()) {
-      const auto& m = materials[static_cast<std::size_t>(shape.mesh.material_ids[0])];
-      b.mesh.color = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
-    }
-    const auto& idx = shape.mesh.indices;
-    for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+    if (shape.diffuse) b.mesh.color = {(*shape.diffuse)[0], (*shape.diffuse)[1], (*shape.diffuse)[2]};
+    for (std::size_t t = 0; t + 2 < shape.corners.size(); t += 3) {
       glm::dvec3 p[3], n[3];
       bool have_normals = true;
       for (int k = 0; k < 3; ++k) {
-        const auto& i = idx[t + static_cast<std::size_t>(k)];
-        const std::size_t v = 3 * static_cast<std::size_t>(i.vertex_index);
-        if (i.vertex_index < 0 || v + 2 >= attrib.vertices.size() + 0)
-          throw std::runtime_error(fmt::format("{}: a face refers to a missing vertex", file));
-        p[k] = {attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]};
-        if (!std::isfinite(p[k].x) || !std::isfinite(p[k].y) || !std::isfinite(p[k].z))
-          throw std::runtime_error(fmt::format("{}: a vertex is not a finite number", file));
-        if (i.normal_index >= 0 && 3 * static_cast<std::size_t>(i.normal_index) + 2 < attrib.normals.size()) {
-          const std::size_t q = 3 * static_cast<std::size_t>(i.normal_index);
-          n[k] = {attrib.normals[q], attrib.normals[q + 1], attrib.normals[q + 2]};
-        } else {
-          have_normals = false;
-        }
+        const ObjCorner& c = shape.corners[t + static_cast<std::size_t>(k)];
+        p[k] = {c.position[0], c.position[1], c.position[2]};
+        if (c.normal) n[k] = {(*c.normal)[0], (*c.normal)[1], (*c.normal)[2]};
+        else have_normals = false;
         lo = glm::min(lo, p[k]);
         hi = glm::max(hi, p[k]);
       }

@@ -248,7 +248,11 @@ class ApitraceReplayer {
     if (m.limits.subpixel_bits < 0 || m.limits.subpixel_bits > 12) stop(call, "--subpixel takes 0..12");
     const std::string err = f.validate(m.limits.max_framebuffer_size);
     if (!err.empty()) stop(call, err);
-    out_.result.context = std::make_unique<Context>(f, m);
+    try {
+      out_.result.context = std::make_unique<Context>(f, m, options_.max_memory);
+    } catch (const BudgetExceeded& e) {
+      stop(call, e.what());
+    }
     runner_ = std::make_unique<CallRunner>(*out_.result.context, options_.strict, options_.diagnostics);
     if (options_.record) {
       options_.record->write_header(s);

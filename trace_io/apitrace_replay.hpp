@@ -30,6 +30,7 @@ struct ApitraceOptions {
   bool strict = false;              // an unsupported call or a GL error ends the replay
   std::ostream* diagnostics = nullptr;  // GL errors as they happen
   TraceWriter* record = nullptr;        // write the replay as a canonical .pass (passim convert)
+  std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
 };
 
 // A call passim did not replay, once per name.

@@ -2,7 +2,6 @@
 #include "trace_io/trace.hpp"
 
 #include <fmt/format.h>
-#include <tiny_obj_loader.h>
 
 #include <charconv>
 #include <cmath>
@@ -15,6 +14,8 @@
 #include <sstream>
 
 #include "trace_io/call_runner.hpp"
+#include "trace_io/obj_file.hpp"
+#include "trace_io/side_files.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "client/pixel_unpack.hpp"
 
@@ -324,8 +325,8 @@ std::optional<T> parse_number(const std::string& w) {
 
 class Replayer {
  public:
-  Replayer(const std::string& name, std::filesystem::path base, const ReplayOptions& options)
-      : name_(name), base_(std::move(base)), options_(options) {}
+  Replayer(const std::string& name, const std::filesystem::path& base, const ReplayOptions& options)
+      : name_(name), side_files_(base, options.allow_files), options_(options) {}
 
   ReplayResult run(const std::string& text) {
     std::vector<Statement> statements = split_statements(text, name_);
@@ -385,7 +386,11 @@ class Replayer {
     if (m.limits.subpixel_bits < 0 || m.limits.subpixel_bits > 12) fail("@subpixel takes 0..12");
     std::string err = f.validate(m.limits.max_framebuffer_size);
     if (!err.empty()) fail(err);
-    result_.context = std::make_unique<Context>(f, m);
+    try {
+      result_.context = std::make_unique<Context>(f, m, options_.max_memory);
+    } catch (const BudgetExceeded& e) {
+      fail(e.what());
+    }
     runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
     if (options_.record) {
       options_.record->write_header(s);
@@ -530,24 +535,19 @@ class Replayer {
   }
 
   void mesh(const std::string& file) {
-    const std::filesystem::path path = base_ / file;
-    tinyobj::ObjReader reader;
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    if (!reader.ParseFromFile(path.string(), config))
-      fail(fmt::format("cannot read mesh '{}': {}", path.string(), reader.Error()));
-    const auto& attrib = reader.GetAttrib();
+    std::vector<ObjShape> shapes;
+    try {
+      shapes = read_obj(side_files_, file, side_file_limit());
+    } catch (const std::runtime_error& e) {  // ObjError, SideFileRefused
+      fail(fmt::format("@mesh: {}", e.what()));
+    }
     Context& ctx = *result_.context;
     ctx.set_source_location(fmt::format("{}:{}", name_, line_));
     ctx.glBegin(GL_TRIANGLES);
-    for (const auto& shape : reader.GetShapes()) {
-      for (const auto& idx : shape.mesh.indices) {
-        if (idx.normal_index >= 0) {
-          const float* n = &attrib.normals[3 * static_cast<std::size_t>(idx.normal_index)];
-          ctx.glNormal3f(n[0], n[1], n[2]);
-        }
-        const float* v = &attrib.vertices[3 * static_cast<std::size_t>(idx.vertex_index)];
-        ctx.glVertex3f(v[0], v[1], v[2]);
+    for (const ObjShape& shape : shapes) {
+      for (const ObjCorner& c : shape.corners) {
+        if (c.normal) ctx.glNormal3f((*c.normal)[0], (*c.normal)[1], (*c.normal)[2]);
+        ctx.glVertex3f(c.position[0], c.position[1], c.position[2]);
       }
     }
     ctx.glEnd();
@@ -640,10 +640,12 @@ class Replayer {
     if (a.kind == Arg::Null) {
       v.count = 0;
     } else if (a.kind == Arg::File) {
-      const std::filesystem::path path = base_ / a.text;
-      std::ifstream in(path, std::ios::binary);
-      if (!in) fail(fmt::format("cannot read side file '{}'", path.string()));
-      std::vector<char> raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      std::string raw;
+      try {
+        raw = side_files_.read(a.text, side_file_limit());
+      } catch (const SideFileRefused& e) {
+        fail(e.what());
+      }
       if (raw.size() % static_cast<std::size_t>(size) != 0)
         fail(fmt::format("side file '{}' holds {} bytes, not a whole number of {}-byte elements", a.text, raw.size(),
                          size));
@@ -720,8 +722,13 @@ class Replayer {
     }
   }
 
+  // What a side file may take: what is left of the run's budget.
+  std::uint64_t side_file_limit() const {
+    return result_.context ? result_.context->memory().left() : options_.max_memory;
+  }
+
   std::string name_;
-  std::filesystem::path base_;
+  SideFiles side_files_;
   ReplayOptions options_;
   int line_ = 0;
   std::string profile_name_ = "ideal";
@@ -740,11 +747,22 @@ ReplayResult replay_trace_text(const std::string& text, const std::string& name,
 }
 
 ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions& options) {
+  // The trace itself: a regular file, read whole, and no larger than the run's budget.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw TraceError(file.string(), 0,
+                     std::filesystem::exists(file, ec) ? "not a regular file" : "cannot open the trace file");
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec) throw TraceError(file.string(), 0, "cannot open the trace file");
+  if (size > options.max_memory)
+    throw TraceError(file.string(), 0,
+                     fmt::format("the trace is {} bytes, more than the run's memory budget of {} (--max-memory)",
+                                 size, options.max_memory));
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw TraceError(file.string(), 0, "cannot open the trace file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return replay_trace_text(ss.str(), file.string(), file.parent_path(), options);
+  std::string text(static_cast<std::size_t>(size), '\0');
+  if (!in || !in.read(text.data(), static_cast<std::streamsize>(size)))
+    throw TraceError(file.string(), 0, "cannot read the trace file");
+  return replay_trace_text(text, file.string(), file.parent_path(), options);
 }
 
 // ------------------------------------------------------------------ writing

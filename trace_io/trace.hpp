@@ -9,6 +9,7 @@
 
 #include "pipeline/context.hpp"
 #include "pipeline/framebuffer.hpp"
+#include "pipeline/memory_budget.hpp"
 #include "pipeline/profile.hpp"
 
 namespace passim {
@@ -51,6 +52,9 @@ struct ReplayOptions {
   bool strict = false;           // a GL error ends the replay (TraceError)
   class TraceWriter* record = nullptr;  // re-record every call (canonical form)
   std::ostream* diagnostics = nullptr;  // GL errors reported here as they happen
+  std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
+  // Folders besides the trace's own that side files may come from (side_files.hpp).
+  std::vector<std::filesystem::path> allow_files;
 };
 
 struct ReplayResult {
@@ -62,7 +66,7 @@ struct ReplayResult {
 // Replays a .pass file. Throws TraceError (with file:line) for malformed input,
 // missing side files and, with `strict`, GL errors.
 ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions& options = {});
-// The same from text (`name` is used in messages; side files resolve against `base_dir`).
+// The same from text (`name` is used in messages; side files are read from `base_dir`).
 ReplayResult replay_trace_text(const std::string& text, const std::string& name,
                                const std::filesystem::path& base_dir, const ReplayOptions& options = {});
 
