@@ -57,7 +57,7 @@ double Value::as_double() const {
   return static_cast<double>(i);
 }
 
-Reader::Reader(std::istream& in) : in_(in) {
+Reader::Reader(std::istream& in, std::uint64_t max_held_bytes) : in_(in), max_held_(max_held_bytes) {
   char magic[2] = {0, 0};
   in_.read(magic, 2);
   if (in_.gcount() != 2) fail("not an apitrace trace: the file is shorter than its 2-byte header");
@@ -75,9 +75,9 @@ Reader::Reader(std::istream& in) : in_(in) {
   if (version_ >= 6) {
     uint();  // semantic version: which retrace semantics apply; passim's are version 6's
     while (true) {
-      std::string name = string();
+      std::string name = string(Held::Signature);
       if (name.empty()) break;
-      properties_[name] = string();
+      properties_[name] = string(Held::Signature);
     }
   }
 }
@@ -131,13 +131,24 @@ std::uint64_t Reader::uint() {
   }
 }
 
-std::string Reader::string() {
+void Reader::hold(std::uint64_t bytes, Held held) {
+  if (bytes > max_held_ - held_)
+    fail(fmt::format("too large: its values need more than the {} bytes the reader may hold (--max-memory / 4; "
+                     "corrupt, or compressed data that expands enormously)",
+                     max_held_));
+  held_ += bytes;
+  if (held == Held::Call) call_bytes_ += bytes;
+}
+
+std::string Reader::string(Held held) {
   const std::uint64_t length = uint();
   std::string s;
-  // Copied a chunk at a time, so a corrupt length costs only the bytes really present.
+  // Copied a chunk at a time, so a corrupt length costs only the bytes really present, and
+  // held as it grows.
   while (s.size() < length) {
     if (pos_ >= chunk_.size() && !fill()) fail("truncated: the trace ends inside a string or blob");
     const std::size_t take = static_cast<std::size_t>(std::min<std::uint64_t>(length - s.size(), chunk_.size() - pos_));
+    hold(take, held);
     s.append(chunk_, pos_, take);
     pos_ += take;
   }
@@ -164,6 +175,8 @@ double Reader::read_double() {
 
 Value Reader::value(int depth) {
   if (depth > kMaxDepth) fail("corrupt: values nested too deeply");
+  // A value in an array or structure costs its own size twice (the vector's spare capacity).
+  hold(2 * sizeof(Value), Held::Call);
   Value v;
   const std::uint8_t tag = byte();
   switch (tag) {
@@ -182,12 +195,12 @@ Value Reader::value(int depth) {
     case 0x04: v.kind = Value::Kind::UInt; v.u = uint(); v.i = static_cast<std::int64_t>(v.u); break;
     case 0x05: v.kind = Value::Kind::Float; v.d = static_cast<double>(read_float()); break;
     case 0x06: v.kind = Value::Kind::Double; v.d = read_double(); break;
-    case 0x07: v.kind = Value::Kind::String; v.bytes = string(); break;
-    case 0x08: v.kind = Value::Kind::Blob; v.bytes = string(); break;
+    case 0x07: v.kind = Value::Kind::String; v.bytes = string(Held::Call); break;
+    case 0x08: v.kind = Value::Kind::Blob; v.bytes = string(Held::Call); break;
     case 0x09: {
       v.kind = Value::Kind::Enum;
       if (version_ < 3) {  // the name, then the value
-        v.bytes = string();
+        v.bytes = string(Held::Call);
         v.i = value(depth + 1).as_integer();
         break;
       }
@@ -197,7 +210,8 @@ Value Reader::value(int depth) {
         std::vector<std::pair<std::string, std::int64_t>> names;
         const std::uint64_t n = uint();
         for (std::uint64_t k = 0; k < n; ++k) {
-          std::string name = string();
+          std::string name = string(Held::Signature);
+          hold(sizeof(std::pair<std::string, std::int64_t>), Held::Signature);
           const Value x = value(depth + 1);
           if (!x.is_integer()) fail("corrupt: an enum signature value is not an integer");
           names.emplace_back(std::move(name), x.as_integer());
@@ -220,9 +234,10 @@ Value Reader::value(int depth) {
       if (!bitmasks_.count(id)) {
         const std::uint64_t n = uint();
         for (std::uint64_t k = 0; k < n; ++k) {
-          string();
+          string(Held::Call);  // read past: passim keeps the numbers only
           uint();
         }
+        hold(64, Held::Signature);
         bitmasks_[id] = true;
       }
       v.u = uint();
@@ -240,10 +255,11 @@ Value Reader::value(int depth) {
       const std::uint64_t id = uint();
       auto it = structs_.find(id);
       if (it == structs_.end()) {
-        string();  // struct name
+        string(Held::Call);  // struct name
         const std::uint64_t n = uint();
         if (n > kMaxArgs) fail("corrupt: a structure with too many members");
-        for (std::uint64_t k = 0; k < n; ++k) string();
+        for (std::uint64_t k = 0; k < n; ++k) string(Held::Call);
+        hold(64, Held::Signature);
         it = structs_.emplace(id, static_cast<std::size_t>(n)).first;
       }
       for (std::size_t k = 0; k < it->second; ++k) v.items.push_back(value(depth + 1));
@@ -261,6 +277,7 @@ Value Reader::value(int depth) {
       const std::uint64_t n = uint();
       for (std::uint64_t k = 0; k < n; ++k) {
         const std::uint64_t c = uint();
+        hold(1, Held::Call);
         v.bytes.push_back(c < 0x80 ? static_cast<char>(c) : '?');
       }
       break;
@@ -276,10 +293,11 @@ std::shared_ptr<const FunctionSig> Reader::function_sig() {
   auto it = functions_.find(id);
   if (it != functions_.end()) return it->second;
   auto sig = std::make_shared<FunctionSig>();
-  sig->name = string();
+  hold(sizeof(FunctionSig) + 64, Held::Signature);
+  sig->name = string(Held::Signature);
   const std::uint64_t n = uint();
   if (n > kMaxArgs) fail(fmt::format("corrupt: function '{}' declares {} arguments", sig->name, n));
-  for (std::uint64_t k = 0; k < n; ++k) sig->arg_names.push_back(string());
+  for (std::uint64_t k = 0; k < n; ++k) sig->arg_names.push_back(string(Held::Signature));
   functions_.emplace(id, sig);
   return sig;
 }
@@ -309,10 +327,11 @@ void Reader::call_details(Call& call, bool leave) {
         for (std::uint64_t k = 0; k < frames; ++k) {
           const std::uint64_t id = uint();
           if (frames_.count(id)) continue;
+          hold(64, Held::Signature);
           frames_[id] = true;
           for (std::uint8_t d = byte(); d != kFrameEnd; d = byte()) {
             if (d == kFrameLine || d == kFrameOffset) uint();
-            else if (d >= kFrameModule && d <= kFrameFile) string();
+            else if (d >= kFrameModule && d <= kFrameFile) string(Held::Call);
             else fail(fmt::format("corrupt: unknown backtrace detail 0x{:02x}", d));
           }
         }
@@ -335,7 +354,8 @@ std::optional<Call> Reader::next() {
       if (pending_.empty()) return std::nullopt;
       // Calls that never returned (the program exited inside them, or the trace was cut).
       auto it = pending_.begin();
-      Call call = std::move(it->second);
+      Call call = std::move(it->second.first);
+      held_ -= it->second.second;
       pending_.erase(it);
       call.incomplete = true;
       return call;
@@ -345,19 +365,24 @@ std::optional<Call> Reader::next() {
       Call call;
       call.number = next_call_++;
       current_call_ = static_cast<long long>(call.number);
+      call_bytes_ = 0;
+      hold(sizeof(Call) + 64, Held::Call);
       if (version_ >= 4) call.thread = uint();
       call.sig = function_sig();
       call.args.resize(call.sig->arg_names.size());
       call_details(call, false);
-      pending_.emplace(call.number, std::move(call));
+      pending_.emplace(call.number, std::make_pair(std::move(call), call_bytes_));
     } else if (event == kEventLeave) {
       const std::uint64_t number = uint();
       auto it = pending_.find(number);
       if (it == pending_.end()) fail(fmt::format("corrupt: a leave event for call {}, which is not pending", number));
       current_call_ = static_cast<long long>(number);
-      Call call = std::move(it->second);
+      Call call = std::move(it->second.first);
+      call_bytes_ = it->second.second;
       pending_.erase(it);
       call_details(call, true);
+      held_ -= call_bytes_;  // the caller owns it now
+      call_bytes_ = 0;
       return call;
     } else {
       fail(fmt::format("corrupt: unknown event type 0x{:02x}", event));

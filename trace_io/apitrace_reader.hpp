@@ -61,8 +61,11 @@ inline constexpr unsigned kOldestVersion = 1, kNewestVersion = 6;
 class Reader {
  public:
   // `in` must outlive the reader. Throws FormatError for a file that is not a
-  // snappy-compressed apitrace trace or has an unsupported version.
-  explicit Reader(std::istream& in);
+  // snappy-compressed apitrace trace or has an unsupported version. The reader holds at most
+  // `max_held_bytes` of decoded values and signatures at once (the calls not yet returned and
+  // the signatures it has met): a file whose values need more is refused (FormatError), as a
+  // few megabytes of compressed nulls can expand to gigabytes of values.
+  explicit Reader(std::istream& in, std::uint64_t max_held_bytes = std::uint64_t{256} << 20);
   ~Reader();
 
   unsigned version() const { return version_; }
@@ -75,7 +78,10 @@ class Reader {
   bool fill();
   std::uint8_t byte();
   std::uint64_t uint();
-  std::string string();
+  // Which count the bytes of what is read go to: the call being read, or the signatures kept.
+  enum class Held { Call, Signature };
+  std::string string(Held held);
+  void hold(std::uint64_t bytes, Held held);
   float read_float();
   double read_double();
   Value value(int depth = 0);
@@ -95,7 +101,10 @@ class Reader {
   std::unordered_map<std::uint64_t, bool> bitmasks_;
   std::unordered_map<std::uint64_t, std::size_t> structs_;  // member counts
   std::unordered_map<std::uint64_t, bool> frames_;
-  std::map<std::uint64_t, Call> pending_;  // entered, not yet left
+  std::map<std::uint64_t, std::pair<Call, std::uint64_t>> pending_;  // entered, not yet left; their bytes
+  std::uint64_t max_held_ = 0;
+  std::uint64_t held_ = 0;        // signatures, pending calls and the call being read
+  std::uint64_t call_bytes_ = 0;  // the call being read
   std::uint64_t next_call_ = 0;
   long long current_call_ = -1;
 };

@@ -65,7 +65,8 @@ class ApitraceReplayer {
 
   ApitraceReplay run(std::istream& in) {
     try {
-      apitrace::Reader reader(in);
+      // The reader holds a quarter of the run's budget at most (its values are converted and dropped).
+      apitrace::Reader reader(in, options_.max_memory / 4);
       while (std::optional<apitrace::Call> call = reader.next()) {
         ++out_.calls;
         process(*call);
@@ -78,6 +79,10 @@ class ApitraceReplayer {
       out_.error = s.message;
     } catch (const TraceError& e) {
       out_.error = e.what();
+    } catch (const std::bad_alloc&) {
+      out_.error = fmt::format("{}: call {}: out of memory (--max-memory sets the run's budget)", name_, out_.calls);
+    } catch (const std::exception& e) {  // any other failure still names the call
+      out_.error = fmt::format("{}: call {}: {}", name_, out_.calls, e.what());
     }
     for (auto* list : {&unsupported_, &ignored_}) {
       auto& target = list == &unsupported_ ? out_.unsupported : out_.ignored;

@@ -2,6 +2,7 @@
 // (.pass text, apitrace binary) shares: data long enough for what the call reads,
 // client-array extents, queries skipped, GL errors reported.
 #pragma once
+#include <map>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
@@ -35,7 +36,7 @@ class CallRunner {
   bool strict_;
   std::ostream* diagnostics_;
   std::size_t reported_errors_ = 0;
-  std::vector<std::shared_ptr<const std::vector<std::byte>>> keep_alive_;  // client arrays in use
+  std::map<GLenum, std::shared_ptr<const std::vector<std::byte>>> keep_alive_;  // client arrays in use
 };
 
 }  // namespace passim

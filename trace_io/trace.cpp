@@ -206,8 +206,17 @@ struct Cursor {
         char e = s[pos++];
         if (e == 'n') out += '\n';
         else if (e == 't') out += '\t';
-        else if (e == 'x' && pos + 1 < s.size()) {
-          out += static_cast<char>(std::stoi(s.substr(pos, 2), nullptr, 16));
+        else if (e == 'x') {
+          // \xHH: exactly two hex digits; anything else is a malformed string (std::runtime_error,
+          // given the trace's location by the replayer).
+          auto hex = [&](std::size_t at) -> int {
+            if (at >= s.size()) return -1;
+            const char h = s[at];
+            return h >= '0' && h <= '9' ? h - '0' : h >= 'a' && h <= 'f' ? h - 'a' + 10 : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
+          };
+          const int hi = hex(pos), lo = hex(pos + 1);
+          if (hi < 0 || lo < 0) throw std::runtime_error("a \\x escape takes two hex digits, e.g. \\x0a");
+          out += static_cast<char>(hi * 16 + lo);
           pos += 2;
         } else out += e;
       } else {
@@ -347,11 +356,20 @@ class Replayer {
         seen_version = true;
         continue;
       }
-      if (c.peek() == '@') {
-        ++c.pos;
-        directive(c);
-      } else {
-        call(c);
+      // Whatever a statement throws is reported at its line (docs/hostile-input.md).
+      try {
+        if (c.peek() == '@') {
+          ++c.pos;
+          directive(c);
+        } else {
+          call(c);
+        }
+      } catch (const TraceError&) {
+        throw;
+      } catch (const std::bad_alloc&) {
+        fail("out of memory (--max-memory sets the run's budget)");
+      } catch (const std::exception& e) {
+        fail(e.what());
       }
     }
     if (!seen_version) {
