@@ -975,6 +975,7 @@ int slurm_study_command(const StudyCommand& c, const StudySweep& sweep) {
     if (s.shards < 1 || s.shards > s.points)
       throw std::invalid_argument(
           fmt::format("--array-size {}: 1 to the sweep's {} points (one shard per task)", s.shards, s.points));
+    extra_lines(c.slurm.extra);  // refused, if it is, before anything is written
     s.dir = normal_dir(c.out);
     s.sweep_id = description.at("id").get<std::string>();
     s.name = job_name_for(s.dir);
