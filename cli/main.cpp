@@ -452,6 +452,7 @@ int main(int argc, char** argv) {
       ->excludes(shard);
   precision->add_option("--array-size", sc.slurm.array_size,
       fmt::format("--slurm: shards, one per array task (default: one per point, at most {})", kDefaultMaxShards))
+      ->check(CLI::PositiveNumber)
       ->needs(slurm);
   precision->add_option("--partition", sc.slurm.partition, "--slurm: the partition (default: the cluster's)")->needs(slurm);
   precision->add_option("--time", sc.slurm.time, "--slurm: time limit of each job, as sbatch takes it, e.g. 30 or 2:00:00")
