@@ -251,7 +251,9 @@ int study_command(const StudyCommand& c) {
   try {
     const std::vector<StudyRow> rows = run_study(sweep, c.jobs, shard, shards, progress);
     if (!c.quiet && std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 1.0) std::cerr << "\n";
-    write_dir_atomically(c.out, [&](const fs::path& dir) { write_outputs(dir, sweep_description(sweep), rows, shard, shards); });
+    write_dir_atomically(c.out, [&](const fs::path& dir) {
+      write_outputs(dir, sweep_description(sweep), rows, shard, shards);
+    });
     if (!c.quiet) {
       std::cout << fmt::format("{} on {}: {} of {} points -> {}/study.csv, study.json\n", sweep.base.program,
                                sweep.base.scene, rows.size(), sweep.points().size(), c.out);
@@ -613,8 +615,6 @@ struct SlurmStudy {
   fs::path shard_dir(int k) const { return dir / "shards" / std::to_string(k); }
   std::string shards_job() const { return name + "-shards"; }
   std::string merge_job() const { return name + "-merge"; }
-  // Points of shard k (1-based): the indices i with i mod N = k - 1.
-  int shard_points(int k) const { return points / shards + (k - 1 < points % shards ? 1 : 0); }
   void save() const { write_text_file(record_file(), record.dump(1) + "\n"); }
 };
 
