@@ -467,9 +467,23 @@ int dispatch(int argc, char** argv) {
   precision->add_option("--map", sc.maps, "Shadow-map sizes (default: the scene's)");
   precision->add_option("--size", sc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
   precision->add_option("--jobs,-j", sc.jobs, "Runs in parallel (identical results)")->capture_default_str();
-  precision->add_option("--shard", sc.shard, "Run slice i of n (i/n); passim merge joins the slices")->capture_default_str();
+  auto* shard = precision->add_option("--shard", sc.shard, "Run slice i of n (i/n); passim merge joins the slices")->capture_default_str();
   precision->add_option("--out,-o", sc.out, "Output directory")->capture_default_str();
   precision->add_flag("--quiet,-q", sc.quiet, "No table, no progress line");
+  auto* slurm = precision->add_flag("--slurm", sc.slurm.enabled,
+      "Run the sweep as a Slurm array job: write sbatch scripts into --out and submit them (docs/cluster.md)")
+      ->excludes(shard);
+  precision->add_option("--array-size", sc.slurm.array_size,
+      fmt::format("--slurm: shards, one per array task (default: one per point, at most {})", kDefaultMaxShards))
+      ->check(CLI::PositiveNumber)
+      ->needs(slurm);
+  precision->add_option("--partition", sc.slurm.partition, "--slurm: the partition (default: the cluster's)")->needs(slurm);
+  precision->add_option("--time", sc.slurm.time, "--slurm: time limit of each job, as sbatch takes it, e.g. 30 or 2:00:00")
+      ->needs(slurm);
+  precision->add_option("--mem", sc.slurm.mem, "--slurm: memory of each job, as sbatch takes it, e.g. 2G")->needs(slurm);
+  precision->add_option("--slurm-extra", sc.slurm.extra,
+      "--slurm: more sbatch options for both jobs, e.g. --slurm-extra=\"--account=lab --qos=short\"")->needs(slurm);
+  precision->add_flag("--no-submit", sc.slurm.no_submit, "--slurm: write the scripts, submit nothing")->needs(slurm);
   auto* provenance = study->add_subcommand(
       "provenance", "Which stage first loses information: the run, then one stage at a time widened to its widest");
   StudyCommand pvc;
@@ -500,6 +514,14 @@ int dispatch(int argc, char** argv) {
   what_if->add_option("--texture-bits", wic.base.texture_bits, "Texture formats (0: as the colour)")->capture_default_str();
   what_if->add_option("--profile", wic.base.profile, "Machine profile the program runs on")->capture_default_str();
   what_if->add_option("--cost", wic.cost_profile, "Machine profile the cost is estimated on")->capture_default_str();
+  auto* status = study->add_subcommand("status", "Where a --slurm study stands: points and shards done, running, failed, missing");
+  std::string status_dir;
+  bool status_json = false;
+  status->add_option("dir", status_dir, "The study's folder (its --out)")->required();
+  status->add_flag("--json", status_json, "As JSON");
+  auto* resume = study->add_subcommand("resume", "Submit again a --slurm study's failed and missing shards, and its merge");
+  std::string resume_dir;
+  resume->add_option("dir", resume_dir, "The study's folder (its --out)")->required();
   auto* merge = app.add_subcommand("merge", "Join sharded study outputs into the files an unsharded run writes");
   std::vector<std::string> merge_dirs;
   std::string merge_out = "study";
@@ -554,6 +576,8 @@ int dispatch(int argc, char** argv) {
   if (*provenance) return provenance_command(pvc);
   if (*what_if) return what_if_command(wic);
   if (*merge) return merge_command(merge_dirs, merge_out);
+  if (*status) return study_status_command(status_dir, status_json);
+  if (*resume) return study_resume_command(resume_dir);
   if (*cost) {
     cc.program_given = cost->count("--program") > 0;
     cc.bits_given = cost->count("--bits") > 0;

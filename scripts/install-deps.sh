@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages passim builds with, if any is missing.
 # --test: also what the test suite needs beyond the build (Chromium for the HTML report test,
-#         clang and its runtime for the libFuzzer targets).
+#         clang and its runtime for the libFuzzer targets, Slurm and MUNGE for the one-node
+#         cluster the Slurm study test starts: tests/slurm/).
 set -euo pipefail
 packages=(build-essential cmake pkg-config libgl-dev libglm-dev libopenimageio-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev libsnappy-dev fonts-dejavu-core)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(chromium clang libclang-rt-14-dev)
+  packages+=(chromium clang libclang-rt-14-dev slurm-wlm munge)
 fi
 missing=()
 for p in "${packages[@]}"; do
