@@ -735,6 +735,7 @@ void ProgramSession::frame() {
   state_->program->frame();
   ++state_->frames;
   const Context& ctx = *state_->run.result.context;
+  ctx.check_balance();  // every run checks it (InternalError), programs as replays
   if (!ctx.error_log().empty()) {
     const GlErrorRecord& e = ctx.error_log().front();
     throw std::logic_error(fmt::format("program {} raised GL error {} in {}", state_->run.options.program,

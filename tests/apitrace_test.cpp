@@ -313,16 +313,18 @@ Agreement compare(const CapturedImage& img, const std::vector<int>& reference, i
   return {static_cast<double>(same) / static_cast<double>(n), largest};
 }
 
-// The bar against Mesa: at 8 bits, >= 99 % of pixels identical, none off by more than 1.
+// Agreement with the image Mesa drew, as measured (Debian 12's Mesa 22.3): at least
+// `measured_identical` of the pixels identical (the measured share floored to 0.01 %), none off
+// by more than one 8-bit step. The measured figures are beside each call.
 void expect_matches_mesa(const std::string& program, const std::string& reference_png, std::uint64_t call,
-                         const ApitraceReplay& r) {
+                         const ApitraceReplay& r, double measured_identical = 1.0) {
   int w = 0, h = 0;
   const std::vector<int> reference = read_reference(kData / reference_png, w, h);
   const Agreement a = compare(snapshot(r, call), reference, w, h);
   std::printf("apitrace %-28s %-24s identical %7.3f %%  largest difference %d\n", program.c_str(),
               reference_png.c_str(), 100.0 * a.identical, a.largest);
-  EXPECT_GE(a.identical, 0.99) << program << " " << reference_png;
-  EXPECT_LE(a.largest, 1) << program << " " << reference_png;
+  EXPECT_GE(a.identical, measured_identical) << program << " " << reference_png;
+  EXPECT_LE(a.largest, measured_identical < 1.0 ? 1 : 0) << program << " " << reference_png;
 }
 
 class RecordedAgainstMesa : public ::testing::TestWithParam<std::string> {};
@@ -403,7 +405,9 @@ TEST(RecordedPrograms, AccumulationAgainstTheSpecOnMesasDrawings) {
   std::vector<std::vector<int>> scenes;
   for (int k = 0; k < 4; ++k) {
     scenes.push_back(read_reference(kData / fmt::format("accum_scene{}.png", k), w, h));
-    expect_matches_mesa("accum", fmt::format("accum_scene{}.png", k), reads[static_cast<std::size_t>(k)], r);
+    // Measured: 100 %, 100 %, 99.976 % (largest difference 1), 100 %.
+    expect_matches_mesa("accum", fmt::format("accum_scene{}.png", k), reads[static_cast<std::size_t>(k)], r,
+                        k == 2 ? 0.9997 : 1.0);
   }
   const CapturedImage& result = snapshot(r, reads[4]);
   ASSERT_EQ(result.codes.size(), static_cast<std::size_t>(w * h * result.channels));

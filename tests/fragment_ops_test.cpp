@@ -94,22 +94,19 @@ TEST(ColorMask, EveryChannelCombination) {
   }
 }
 
-TEST(Dither, IsANoOpUnderTheDefaultArithmetic) {
-  // A3: colours are quantised once (rounded), so DITHER on or off gives the same bits.
-  Context on(test::small_config(8, 8, 8)), off(test::small_config(8, 8, 8));
-  off.glDisable(GL_DITHER);
-  for (Context* c : {&on, &off}) {
-    test::window_projection(*c);
-    c->glBegin(GL_TRIANGLES);
-    c->glColor3f(0.1f, 0.7f, 0.33f);
-    c->glVertex2f(0, 0);
-    c->glColor3f(0.9f, 0.2f, 0.5f);
-    c->glVertex2f(8, 0);
-    c->glColor3f(0.4f, 0.4f, 0.9f);
-    c->glVertex2f(0, 8);
-    c->glEnd();
-  }
-  EXPECT_EQ(on.framebuffer().color[0].rgba, off.framebuffer().color[0].rgba);
+TEST(Dither, EnabledByDefaultAndStoredAsState) {
+  // Table 6.20: DITHER is enabled initially; it is state that IsEnabled and GetBooleanv report.
+  // A3: no stage reads it (colours are rounded once), so it has no test of its effect.
+  Context ctx(test::small_config(8, 8, 8));
+  EXPECT_EQ(ctx.glIsEnabled(GL_DITHER), GL_TRUE);
+  ctx.glDisable(GL_DITHER);
+  EXPECT_EQ(ctx.glIsEnabled(GL_DITHER), GL_FALSE);
+  GLboolean b = GL_TRUE;
+  ctx.glGetBooleanv(GL_DITHER, &b);
+  EXPECT_EQ(b, GL_FALSE);
+  ctx.glEnable(GL_DITHER);
+  EXPECT_EQ(ctx.glIsEnabled(GL_DITHER), GL_TRUE);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST(AlphaWidth, FewerThanTwoAlphaBitsCarryAlphaAtRgbPrecision) {

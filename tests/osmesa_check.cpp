@@ -292,20 +292,18 @@ Stats compare(F scene, const char* name) {
 
 }  // namespace
 
-// Scenes that meet the texturing issue's bar assert it. The others report their figures and
-// are skipped, visibly, until the differences listed in docs/arithmetic.md ("Against Mesa")
-// are settled: they do not pass silently.
-#define SCENE_TEST(fn, meets_bar)                                                               \
-  TEST(AgainstMesa, fn) {                                                                      \
-    const Stats s = compare([](auto& gl) { fn(gl); }, #fn);                                    \
-    if (!(meets_bar))                                                                          \
-      GTEST_SKIP() << #fn << ": open difference (docs/arithmetic.md, Against Mesa): identical " \
-                   << 100.0 * s.identical << " %, largest difference " << s.max_diff;          \
-    EXPECT_GE(s.identical, 0.99) << #fn;                                                       \
-    EXPECT_LE(s.max_diff, 1) << #fn;                                                           \
+// Each scene asserts the agreement measured against Debian 12's Mesa (22.3, llvmpipe), as
+// measured (docs/arithmetic.md, "Against Mesa"): the share of identical pixels, floored to
+// 0.1 %, and the largest difference in 8-bit steps. Mesa draws the same image every run, so
+// a change of one pixel's rule shows here.
+#define SCENE_TEST(fn, measured_identical, measured_largest)            \
+  TEST(AgainstMesa, fn) {                                               \
+    const Stats s = compare([](auto& gl) { fn(gl); }, #fn);             \
+    EXPECT_GE(s.identical, measured_identical) << #fn;                  \
+    EXPECT_LE(s.max_diff, measured_largest) << #fn;                     \
   }
 
-SCENE_TEST(lit_geometry, true)
-SCENE_TEST(texgen_ramp, true)
-SCENE_TEST(projective_reverse_subtract, true)
-SCENE_TEST(masks_and_equations, true)
+SCENE_TEST(lit_geometry, 0.997, 1)                 // measured 99.708 %, 1
+SCENE_TEST(texgen_ramp, 1.0, 0)                    // measured 100 %, 0
+SCENE_TEST(projective_reverse_subtract, 0.996, 1)  // measured 99.625 %, 1
+SCENE_TEST(masks_and_equations, 0.998, 1)          // measured 99.839 %, 1
