@@ -1,4 +1,4 @@
-// passim: the command line (docs/cli.md).
+// passim: the command line (README.md; each command's --help).
 //   passim run FILE.pass --out DIR     replay a trace: images + counters.json
 //   passim run FILE.trace --snapshot S replay an apitrace trace: snapshots + counters.json
 //   passim convert FILE.trace -o F.pass  an apitrace trace as a canonical .pass

@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libgl-dev libglm-dev libopenimageio-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev libosmesa6-dev libsnappy-dev fonts-dejavu-core)
 if [ "${1:-}" = "--test" ]; then
-  packages+=(chromium clang libclang-rt-14-dev slurm-wlm munge)
+  packages+=(chromium clang libclang-rt-14-dev python3 slurm-wlm munge)
 fi
 missing=()
 for p in "${packages[@]}"; do
