@@ -4,9 +4,12 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 #include <sstream>
 
 #include "cli/args.hpp"
+#include "cli/cross_check_command.hpp"
 #include "trace_io/apitrace_replay.hpp"
 #include "reports/image_io.hpp"
 #include "reports/report.hpp"
@@ -56,6 +59,19 @@ void print_summary(const ApitraceReplay& r, const ApitraceCommand& c) {
 int apitrace_run_command(const ApitraceCommand& c) {
   ApitraceOptions o;
   if (!to_options(c, o)) return kUsage;
+  if (c.cross_check) {
+    o.diagnostics = nullptr;
+    return cross_check_command(c.trace, [&](const KernelPaths& paths, Context::PassEndObserver observer) {
+      const ScopedKernelPaths scope(paths);
+      ApitraceOptions run = o;
+      run.pass_end = std::move(observer);
+      ApitraceReplay r = replay_apitrace(c.trace, run);
+      if (r.error) throw std::runtime_error(*r.error);
+      return std::move(r.result);
+    }, c.quiet);
+  }
+  std::optional<ScopedKernelPaths> reference;
+  if (c.reference) reference.emplace(KernelPaths::reference());
   ApitraceReplay r = replay_apitrace(c.trace, o);
   // A replay that stops with an error writes nothing (no image of a run that failed is left).
   if (r.result.context && !r.error) {

@@ -16,6 +16,7 @@ struct ApitraceCommand {
   int bits = 0, depth_bits = -1, stencil_bits = -1, accum_bits = -1;
   bool strict = false, tiff = false, quiet = false;
   std::uint64_t max_memory = std::uint64_t{1} << 30;  // --max-memory
+  bool reference = false, cross_check = false;         // the kernel paths (reports/cross_check.hpp)
 };
 
 int apitrace_run_command(const ApitraceCommand& c);

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "pipeline/allocator.hpp"
@@ -24,6 +25,7 @@
 #include "trace_io/trace.hpp"
 #include "cli/apitrace_command.hpp"
 #include "cli/args.hpp"
+#include "cli/cross_check_command.hpp"
 #include "cli/cost_command.hpp"
 #include "cli/html_report.hpp"
 #include "cli/study_command.hpp"
@@ -56,6 +58,7 @@ struct RunCommand {
   std::string expect, record;
   std::uint64_t max_memory = kDefaultMemoryBudget;
   std::vector<fs::path> allow_files;
+  bool reference = false, cross_check = false;
 };
 
 int run_command(const RunCommand& c) {
@@ -74,6 +77,17 @@ int run_command(const RunCommand& c) {
   if (!record.empty()) options.record = &writer;
   RunOutput result;
   try {
+    if (c.cross_check) {
+      options.diagnostics = nullptr;  // each run would report the same GL errors
+      return cross_check_command(trace.string(), [&](const KernelPaths& paths, Context::PassEndObserver observer) {
+        const ScopedKernelPaths scope(paths);
+        ReplayOptions o = options;
+        o.pass_end = std::move(observer);
+        return replay_trace(trace, o);
+      }, quiet);
+    }
+    std::optional<ScopedKernelPaths> reference;
+    if (c.reference) reference.emplace(KernelPaths::reference());
     result = run_trace_to_dir(trace, out, options, c.tiff);
     if (!record.empty()) write_text_file(record, recorded.str());
   } catch (const TraceError& e) {
@@ -147,7 +161,7 @@ std::vector<fs::path> write_program_outputs(const ProgramRun& run, const fs::pat
 struct ProgramCommand {
   ProgramOptions options;
   std::string size = "800x600", filter, out = "out";
-  bool list = false, no_jitter = false, tiff = false, quiet = false;
+  bool list = false, no_jitter = false, tiff = false, quiet = false, reference = false, cross_check = false;
 };
 
 int program_command(ProgramCommand& c) {
@@ -197,6 +211,27 @@ int program_command(ProgramCommand& c) {
       return kRunError;
     }
     return kOk;
+  }
+  if (c.cross_check) {
+    try {
+      return cross_check_command(fmt::format("program {}", o.program),
+                                 [&](const KernelPaths& paths, Context::PassEndObserver observer) {
+                                   const ScopedKernelPaths scope(paths);
+                                   ProgramOptions p = o;
+                                   if (!paths.specialised) p.threads = 1;
+                                   p.pass_end = std::move(observer);
+                                   return std::move(run_program(p).result);
+                                 },
+                                 c.quiet);
+    } catch (const std::exception& e) {
+      std::cerr << "passim: " << e.what() << "\n";
+      return kRunError;
+    }
+  }
+  std::optional<ScopedKernelPaths> reference;
+  if (c.reference) {
+    reference.emplace(KernelPaths::reference());
+    o.threads = 1;
   }
   ProgramRun run;
   std::vector<fs::path> files;
@@ -354,6 +389,16 @@ int dispatch(int argc, char** argv) {
         ->default_str("1GiB");
   };
   input_limits(run, rc.max_memory);
+  // The reference and fast paths (stages/kernel_paths.hpp, reports/cross_check.hpp).
+  auto path_options = [](CLI::App* cmd, bool& reference, bool& cross_check) {
+    cmd->add_flag("--reference", reference,
+                  "Run on the reference paths: scalar kernels, the general paths, one thread (the same bits, slower)");
+    cmd->add_flag("--cross-check", cross_check,
+                  "Run on the reference and on the fast paths and compare every plane after each pass and every "
+                  "counter and image at the end; writes nothing; exit 3 naming the first difference")
+        ->excludes(cmd->get_option("--reference"));
+  };
+  path_options(run, rc.reference, rc.cross_check);
   run->add_option("--allow-files", rc.allow_files,
                   "A folder side files (file(...), @mesh) may also come from; by default only the trace's own "
                   "folder (repeatable)")
@@ -427,6 +472,7 @@ int dispatch(int argc, char** argv) {
   program->add_option("--out,-o", pc.out, "Output directory")->capture_default_str();
   program->add_flag("--tiff", pc.tiff, "Colour images wider than 8 bits as 16-bit TIFF instead of PNG");
   program->add_flag("--quiet,-q", pc.quiet, "Print nothing but errors");
+  path_options(program, pc.reference, pc.cross_check);
 
   auto* report = app.add_subcommand("report", "Reports: cost (a trace or a program), html (a study)");
   report->require_subcommand(1);
@@ -551,6 +597,8 @@ int dispatch(int argc, char** argv) {
       ac.tiff = rc.tiff;
       ac.quiet = rc.quiet;
       ac.max_memory = rc.max_memory;
+      ac.reference = rc.reference;
+      ac.cross_check = rc.cross_check;
       if (!rc.allow_files.empty()) {
         std::cerr << "passim run: --allow-files is for .pass traces (an apitrace trace reads no side files)\n";
         return kUsage;

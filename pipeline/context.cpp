@@ -731,6 +731,7 @@ void Context::glPopGroupMarkerEXT() {
     warn_once("glPopGroupMarkerEXT without a matching push: ignored");
     return;
   }
+  const std::size_t ended = marker_stack_.back();
   marker_stack_.pop_back();
   // Work after the pop belongs to the enclosing marker, as a new segment of it.
   if (marker_stack_.empty()) {
@@ -741,6 +742,7 @@ void Context::glPopGroupMarkerEXT() {
     marker_stack_.back() = passes_.size() - 1;
     current_pass_ = marker_stack_.back();
   }
+  if (pass_end_) pass_end_(*this, ended);  // the raster queue ran at PASSIM_ENTRY: the planes are complete
 }
 
 void Context::glInsertEventMarkerEXT(GLsizei length, const GLchar* marker) {

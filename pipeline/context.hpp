@@ -340,6 +340,10 @@ class Context {
   // Raises InternalError if any pass broke the fragment balance.
   void check_balance() const;
   void set_call_sink(CallSink* sink) { sink_ = sink; }
+  // Called at the end of every pass (each glPopGroupMarkerEXT, with the index of the pass that
+  // ended) once its work has reached the planes: where the cross-check compares two runs.
+  using PassEndObserver = std::function<void(const Context&, std::size_t pass)>;
+  void set_pass_end_observer(PassEndObserver observer) { pass_end_ = std::move(observer); }
   // "file:line" attached to GL errors raised from now on (trace replay).
   void set_source_location(std::string where) { where_ = std::move(where); }
   // The colour buffer a name (GL_FRONT/GL_BACK...) reads from; nullptr when absent.
@@ -720,6 +724,7 @@ class Context {
   bool primitive_setup_valid_ = false;
 
   // passes
+  PassEndObserver pass_end_;
   std::vector<Pass> passes_;
   std::vector<std::size_t> marker_stack_;  // indices into passes_
   std::size_t current_pass_ = SIZE_MAX;

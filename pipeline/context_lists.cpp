@@ -12,6 +12,7 @@
 
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
+#include "stages/kernel_paths.hpp"
 
 namespace passim {
 
@@ -122,7 +123,8 @@ void Context::execute_list(GLuint list) {
   } nesting(list_nesting_);
   // Copy-free: a list cannot be redefined while it runs (NewList is not compiled).
   const std::vector<Call>& calls = it->second;
-  const auto batches = list_batches_.find(list);
+  // Blocks of triangles drawn as a whole are a fast path; the reference runs every call.
+  const auto batches = use_specialised() ? list_batches_.find(list) : list_batches_.end();
   if (batches == list_batches_.end()) {
     for (const Call& call : calls) call.info->invoke(*this, call.args);
   } else {

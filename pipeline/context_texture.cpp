@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "pipeline/context.hpp"
+#include "stages/kernel_paths.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "client/glu_mipmaps.hpp"
@@ -523,7 +524,9 @@ template void Context::SourceCodes::through_table(int, int, const std::uint32_t*
 
 std::vector<Rgba> Context::transfer_table(const SourceCodes& source, int dims, std::uint64_t pixels) {
   const Mat4& matrix = transform_.color.back();
-  if (!transfer_per_component(transfer_, matrix, dims) || source.table_entries() > pixels) return {};
+  // A fast path (the reference transfers every pixel).
+  if (!use_specialised() || !transfer_per_component(transfer_, matrix, dims) || source.table_entries() > pixels)
+    return {};
   std::vector<Rgba> reals = source.table_reals();
   transfer_per_pixel_steps(transfer_, matrix, reals.data(), reals.size());
   return reals;

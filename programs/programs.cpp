@@ -711,6 +711,7 @@ ProgramSession::ProgramSession(const ProgramOptions& options, bool record) : sta
 
   run.result.context = std::make_unique<Context>(s.framebuffer, s.machine());
   run.result.context->set_threads(options.threads);
+  run.result.context->set_pass_end_observer(options.pass_end);
   if (o.remove_color_tables || o.remove_convolution || o.remove_color_matrix) {
     // A trace cannot say this (it is not GL state): such a session records nothing.
     if (record) throw ProgramError("a program with removed stages cannot be recorded as a trace");

@@ -52,6 +52,8 @@ struct ProgramOptions {
   // rendered, as a displayed frame is: the timing benchmark (bench/programs_bench.cpp). A
   // recorded session captures them regardless (its trace names them).
   bool images = true;
+  // Called at the end of every pass (the cross-check, reports/cross_check.hpp).
+  Context::PassEndObserver pass_end;
 };
 
 struct ProgramInfo {

@@ -4,6 +4,7 @@
 #include "stages/clear.hpp"
 
 #include "stages/avx2.hpp"
+#include "stages/kernel_paths.hpp"
 
 namespace passim {
 
@@ -129,7 +130,7 @@ void accumulate(GLenum op, double value, const PixelBox& r, const ColorPlane& re
       row_op.code_mask[k] = bits ? max_code(bits) : 0;
     }
   for (int k = 0; k < 4; ++k) row_op.color_max[k] = static_cast<double>(max_code(cfg.color_bits[k]));
-  const bool wide = cpu_has_avx2();
+  const bool wide = use_avx2();
   std::vector<std::uint16_t> returned(op == GL_RETURN ? 4 * static_cast<std::size_t>(std::max(width, 0)) : 0);
   for (int y = r.y0; y < r.y1 && width > 0; ++y) {
     const std::size_t p = fb.pixel_index(r.x0, y);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "stages/avx2.hpp"
+#include "stages/kernel_paths.hpp"
 
 namespace passim {
 
@@ -120,7 +121,7 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
   // The output columns whose footprint lies inside the image: [i_in0, i_in1).
   const int i_in0 = std::min(cw, wo), i_in1 = std::max(i_in0, std::min(wo, ws - wf + cw + 1));
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  const bool wide = kernel == ConvolutionKernel::Fastest && cpu_has_avx2();
+  const bool wide = kernel == ConvolutionKernel::Fastest && use_avx2();
   std::vector<Rgba> component_taps(taps.size());
   for (std::size_t t = 0; t < taps.size(); ++t)
     for (std::size_t k = 0; k < 4; ++k) component_taps[t][k] = taps[t][static_cast<std::size_t>(source[k])];

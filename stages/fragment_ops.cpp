@@ -6,6 +6,7 @@
 
 #include "pipeline/fixed_point.hpp"
 #include "stages/avx2.hpp"
+#include "stages/kernel_paths.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -140,16 +141,17 @@ std::uint64_t blend_pairs_sse2(const UnitFactorBlend& b, const std::uint8_t* liv
 std::uint64_t blend_span_unit_factors(const UnitFactorBlend& b, const std::uint8_t* live, const std::uint16_t* src,
                                       std::uint16_t* dst, int begin, int end) {
 #if defined(__SSE2__)
-  switch (b.equation) {
-    case GL_FUNC_SUBTRACT: return blend_pairs_sse2<GL_FUNC_SUBTRACT>(b, live, src, dst, begin, end);
-    case GL_FUNC_REVERSE_SUBTRACT: return blend_pairs_sse2<GL_FUNC_REVERSE_SUBTRACT>(b, live, src, dst, begin, end);
-    case GL_MIN: return blend_pairs_sse2<GL_MIN>(b, live, src, dst, begin, end);
-    case GL_MAX: return blend_pairs_sse2<GL_MAX>(b, live, src, dst, begin, end);
-    default: return blend_pairs_sse2<GL_FUNC_ADD>(b, live, src, dst, begin, end);
+  if (use_sse2()) {
+    switch (b.equation) {
+      case GL_FUNC_SUBTRACT: return blend_pairs_sse2<GL_FUNC_SUBTRACT>(b, live, src, dst, begin, end);
+      case GL_FUNC_REVERSE_SUBTRACT: return blend_pairs_sse2<GL_FUNC_REVERSE_SUBTRACT>(b, live, src, dst, begin, end);
+      case GL_MIN: return blend_pairs_sse2<GL_MIN>(b, live, src, dst, begin, end);
+      case GL_MAX: return blend_pairs_sse2<GL_MAX>(b, live, src, dst, begin, end);
+      default: return blend_pairs_sse2<GL_FUNC_ADD>(b, live, src, dst, begin, end);
+    }
   }
-#else
-  return blend_span_unit_factors_scalar(b, live, src, dst, begin, end);
 #endif
+  return blend_span_unit_factors_scalar(b, live, src, dst, begin, end);
 }
 
 std::uint32_t logic_op(GLenum op, std::uint32_t s, std::uint32_t d, std::uint32_t mask) {
@@ -369,7 +371,7 @@ __attribute__((target("avx2"))) std::uint64_t blend_reals_avx2(const RealBlend& 
 std::uint64_t blend_span_reals(const RealBlend& b, const std::uint8_t* live, const std::uint16_t* src,
                                std::uint16_t* dst, int begin, int end) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  if (cpu_has_avx2()) {
+  if (use_avx2()) {
     switch (b.equation) {
       case GL_FUNC_SUBTRACT: return blend_reals_avx2<GL_FUNC_SUBTRACT>(b, live, src, dst, begin, end);
       case GL_FUNC_REVERSE_SUBTRACT: return blend_reals_avx2<GL_FUNC_REVERSE_SUBTRACT>(b, live, src, dst, begin, end);
@@ -507,7 +509,6 @@ std::uint64_t replace_by_func(bool depth_on, GLenum func, bool w, const std::arr
 
 }  // namespace
 
-bool FragmentOps::general_path_only = false;
 
 void FragmentOps::replace_span(const FragmentSpan& span, int begin, int end, Counters& counters) {
   const FragmentOpsState& ops = *in_.ops;
@@ -542,7 +543,7 @@ FragmentOps::Plan FragmentOps::plan() const {
   const FramebufferConfig& cfg = fb_.config;
   const std::array<int, 4>& fragment_bits = *in_.fragment_bits;
   Plan p;
-  p.replace_only = !general_path_only && !ops.alpha_test && !(ops.stencil_test && cfg.stencil_bits > 0) && !ops.blend &&
+  p.replace_only = use_specialised() && !ops.alpha_test && !(ops.stencil_test && cfg.stencil_bits > 0) && !ops.blend &&
                    !ops.logic_op_enabled && fragment_bits == cfg.color_bits && in_.draw_buffers->size() == 1;
   if (p.replace_only) return p;
   if (ops.alpha_test) p.alpha_ref = float_to_fixed(ops.alpha_ref, fragment_bits[3]);
@@ -557,7 +558,7 @@ FragmentOps::Plan FragmentOps::plan() const {
   p.all_channels = ctl.color_mask[0] && ctl.color_mask[1] && ctl.color_mask[2] && ctl.color_mask[3];
   // The masked write (§4.2.2) keeps only these channels: the others need no blend.
   for (int k = 0; k < 4; ++k) p.written[k] = ctl.color_mask[k] && cfg.color_bits[k] > 0;
-  p.unit_factors = p.blend_on && p.same_widths && !general_path_only &&
+  p.unit_factors = p.blend_on && p.same_widths && use_specialised() &&
                    blend_has_unit_factors(ops.blend_equation, ops.blend_src, ops.blend_dst);
   if (p.unit_factors) {
     // Factors 0 and 1 on codes of one width: the same results in integers. A channel
@@ -669,7 +670,7 @@ void FragmentOps::process_row(const Plan& p, FragmentSpan& span) {
       continue;
     }
     if (p.blend_on) {
-      const std::uint64_t blended = general_path_only ? blend_span_reals_scalar(p.real, live, span.rgba, dst, begin, end)
+      const std::uint64_t blended = !use_specialised() ? blend_span_reals_scalar(p.real, live, span.rgba, dst, begin, end)
                                                       : blend_span_reals(p.real, live, span.rgba, dst, begin, end);
       counters.blend_operations += blended;
       counters.color_bits_read += blended * static_cast<std::uint64_t>(p.total_bits);

@@ -81,9 +81,6 @@ class FragmentOps final : public FragmentSink {
   void configure(const FragmentOpsInput& input) { in_ = input; }
   // A span of several rows is taken row by row.
   void process(FragmentSpan& span) override;
-  // Testing hook: run every span through the general path (the specialised replace path
-  // is checked against it).
-  static bool general_path_only;
 
  private:
   // What the operations do, found from the state once per call of process.

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "stages/avx2.hpp"
+#include "stages/kernel_paths.hpp"
 
 namespace passim {
 
@@ -106,7 +107,7 @@ void color_codes_from_reals_scalar(const Rgba* pixels, std::size_t n, const doub
 }
 
 void color_codes_from_reals(const Rgba* pixels, std::size_t n, const double max[4], std::uint16_t* out) {
-  (cpu_has_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
+  (use_avx2() ? color_codes_from_reals_avx2 : color_codes_from_reals_scalar)(pixels, n, max, out);
 }
 
 bool transfer_per_component(const PixelTransferState& s, const Mat4& m, int dims) {
@@ -117,7 +118,7 @@ bool transfer_per_component(const PixelTransferState& s, const Mat4& m, int dims
 void transfer_per_pixel_steps(const PixelTransferState& s, const Mat4& m, Rgba* pixels, std::size_t n) {
   // The kernels transfer_rgba chooses (the scalar and AVX2 ones agree bit for bit).
   const TransferPlan plan = plan_transfer(s, m);
-  const bool wide = cpu_has_avx2();
+  const bool wide = use_avx2();
   (wide && !plan.map_color ? transfer_pre_convolution_avx2 : transfer_pre_convolution_scalar)(plan, pixels, n);
   (wide ? transfer_post_convolution_avx2 : transfer_post_convolution_scalar)(plan, pixels, n);
 }
@@ -137,7 +138,7 @@ void count_transfer(const PixelTransferState& s, const Mat4& m, std::uint64_t n_
 bool transfer_rgba(std::vector<Rgba>& pixels, int& width, int& height, PixelTransferState& s, const Mat4& m,
                    Counters& counters, int dims, std::vector<Rgba>* spare, const RowSplitter* split) {
   const TransferPlan plan = plan_transfer(s, m);
-  const bool wide = cpu_has_avx2();
+  const bool wide = use_avx2();
   const std::uint64_t n_in = pixels.size();
   // Per-pixel work over the current image's rows, split as `split` chooses.
   auto by_rows = [&](auto&& per_pixels) {

@@ -1,5 +1,7 @@
 #include "stages/span_kernels.hpp"
 
+#include "stages/kernel_paths.hpp"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -73,8 +75,7 @@ __attribute__((target("avx2"))) void texture_coordinates_avx2(const SpanPlane st
 
 void texture_coordinates(const SpanPlane stq[4], int x0, double x_ref, int n, int used, double* s, double* t,
                          double* r) {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return texture_coordinates_avx2(stq, x0, x_ref, n, used, s, t, r);
+  if (use_avx2()) return texture_coordinates_avx2(stq, x0, x_ref, n, used, s, t, r);
   texture_coordinates_scalar(stq, x0, x_ref, n, used, s, t, r);
 }
 
@@ -149,14 +150,12 @@ void color_codes_wide(const SpanPlane& q, const SpanPlane c[4], const double sca
 }
 void depth_codes_padded(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale,
                         std::uint32_t* out) {
-  static const bool avx2 = depth_codes_has_avx2();
-  if (!avx2 || scale >= 2147483647.0) return depth_codes(z, offset, x0, x_ref, n, scale, out);
+  if (!use_avx2() || scale >= 2147483647.0) return depth_codes(z, offset, x0, x_ref, n, scale, out);
   depth_codes_avx2(z, offset, x0, x_ref, n, scale, out, true);
 }
 void color_codes_padded(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                         std::uint16_t* out) {
-  static const bool avx2 = color_codes_has_avx2();
-  if (!avx2) return color_codes(q, c, scale, x0, x_ref, n, out);
+  if (!use_avx2()) return color_codes(q, c, scale, x0, x_ref, n, out);
   color_codes_avx2(q, c, scale, x0, x_ref, n, out, true);
 }
 #else
@@ -204,9 +203,9 @@ inline __m128d centre_offsets(int x, double x_ref) {
 }  // namespace
 
 void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n, double scale, std::uint32_t* out) {
-  if (scale >= 2147483647.0) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);  // 31-32 bits
-  static const bool avx2 = depth_codes_has_avx2();
-  if (avx2 && n >= 4) return depth_codes_wide(z, offset, x0, x_ref, n, scale, out);
+  // 31-32 bits, or the reference asked for: the scalar loop.
+  if (scale >= 2147483647.0 || !use_sse2()) return depth_codes_scalar(z, offset, x0, x_ref, n, scale, out);
+  if (use_avx2() && n >= 4) return depth_codes_wide(z, offset, x0, x_ref, n, scale, out);
   const Lanes L;
   const __m128d row = _mm_set1_pd(z.row), d = _mm_set1_pd(z.d_dx), off = _mm_set1_pd(offset), s = _mm_set1_pd(scale);
   int i = 0;
@@ -221,8 +220,8 @@ void depth_codes(const SpanPlane& z, double offset, int x0, double x_ref, int n,
 
 void color_codes(const SpanPlane& q, const SpanPlane c[4], const double scale[4], int x0, double x_ref, int n,
                  std::uint16_t* out) {
-  static const bool avx2 = color_codes_has_avx2();
-  if (avx2 && n >= 4) return color_codes_wide(q, c, scale, x0, x_ref, n, out);
+  if (!use_sse2()) return color_codes_scalar(q, c, scale, x0, x_ref, n, out);
+  if (use_avx2() && n >= 4) return color_codes_wide(q, c, scale, x0, x_ref, n, out);
   const Lanes L;
   const __m128d q_row = _mm_set1_pd(q.row), q_d = _mm_set1_pd(q.d_dx), one = _mm_set1_pd(1.0);
   __m128d c_row[4], c_d[4], s[4];

@@ -6,6 +6,7 @@
 
 #include "pipeline/fixed_point.hpp"
 #include "stages/avx2.hpp"
+#include "stages/kernel_paths.hpp"
 
 namespace passim {
 namespace {
@@ -486,7 +487,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
 std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& span, const std::array<int, 4>& bits,
                                   const std::array<bool, 4>& replace, std::uint8_t* general, Counters& counters) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  if (cpu_has_avx2()) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
+  if (use_avx2()) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
 #endif
   return linear_replace_span_scalar(l, span, bits, replace, general, counters);
 }
@@ -554,7 +555,7 @@ __attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeomet
 void nearest_replace_span(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
                           const std::array<bool, 4>& replace) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  if (cpu_has_avx2()) return nearest_replace_span_avx2(l, codes, span, replace);
+  if (use_avx2()) return nearest_replace_span_avx2(l, codes, span, replace);
 #endif
   nearest_replace_span_scalar(l, codes, span, replace);
 }

@@ -1,12 +1,13 @@
 #include "stages/texture_stage.hpp"
 
+#include "stages/kernel_paths.hpp"
+
 #include "pipeline/fixed_point.hpp"
 #include "stages/texture_env.hpp"
 #include "stages/texture_sample.hpp"
 
 namespace passim {
 
-bool TextureStage::general_path_only = false;
 namespace {
 thread_local std::uint64_t fast_path_fragments = 0;
 }  // namespace
@@ -17,7 +18,7 @@ void TextureStage::reset_fast_path_fragments_here() { fast_path_fragments = 0; }
 namespace {
 // The NEAREST/REPLACE fast path's condition (it reads TextureLevel::codes_at).
 bool nearest_replace(const TextureObject& tex, const TextureLevel& base, GLenum env_mode) {
-  return !TextureStage::general_path_only && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
+  return use_specialised() && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
          env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
 }
 }  // namespace
@@ -63,7 +64,7 @@ void TextureStage::configure(const TextureStageSetup& setup, FragmentSink& next)
   // takes the texel's components as NEAREST's fast path does; fragments whose footprint
   // reaches the border colour, or whose coordinates are not finite, take the general path.
   // (Not under A29's 8.8 filter, which the general sampler alone implements.)
-  if (!general_path_only && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
+  if (use_specialised() && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
       setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT) {
     path_ = Path::kLinearReplace;
     geometry_ = level_geometry(tex, base, setup_.dims);

@@ -36,8 +36,6 @@ class TextureStage final : public FragmentSink {
   // that several threads can then sample the texture without writing to it; `split` makes
   // the replace codes by ranges of rows (TextureLevel::codes_at).
   static void make_caches(const TextureStageSetup& setup, const RowSplitter* split = nullptr);
-  // Tests set this to compare the NEAREST/REPLACE fast path with the general one.
-  static bool general_path_only;
   // Fragments the fast paths textured on this thread (for tests; per thread, so that
   // raster lanes do not contend for one counter).
   static std::uint64_t fast_path_fragments_here();

@@ -1,6 +1,8 @@
 // Per-fragment operations (§4.1) with hand-computed values at 8 and 12 bits.
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "test_util.hpp"
 
 using namespace passim;
@@ -209,6 +211,7 @@ TEST(FlatShading, ProvokingVertexIsLastForTrianglesFirstForPolygons) {
 
 #include "stages/fragment_ops.hpp"
 #include "pipeline/fixed_point.hpp"
+#include "stages/kernel_paths.hpp"
 
 TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
   // Random triangles under random depth functions, depth masks, colour masks, scissor, blend:
@@ -243,13 +246,14 @@ TEST(FastPath, ReplacePathMatchesTheGeneralPath) {
       ctx.glEnd();
     }
   };
+  std::optional<ScopedKernelPaths> paths;  // the general paths for the second drawing
   for (int bits : {8, 12}) {
     for (unsigned seed = 1; seed <= 20; ++seed) {
       Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
       draw(fast, seed);
-      FragmentOps::general_path_only = true;
+      paths.emplace(KernelPaths{KernelPaths::Simd::Avx2, false});
       draw(general, seed);
-      FragmentOps::general_path_only = false;
+      paths.reset();
       ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba) << seed;
       ASSERT_EQ(fast.framebuffer().depth, general.framebuffer().depth) << seed;
       ASSERT_TRUE(fast.total_counters() == general.total_counters()) << seed;

@@ -3,11 +3,13 @@
 // base format and size, random colour matrices and scales.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
 
 #include "pipeline/gl.hpp"
+#include "pipeline/profile.hpp"
 #include "stages/avx2.hpp"
 #include "stages/pixel_transfer.hpp"
 
@@ -93,20 +95,28 @@ TEST(PixelTransferKernels, TheFinalConversionRoundsAsTheSpecSays) {
 }
 
 TEST(PixelTransferKernels, ConvolutionAvx2MatchesTheScalarReferenceBitForBit) {
-  // Every filter size 1-7 x 1-7 (and separable ones), every base format and border mode, on
-  // images wider, narrower and smaller than the filter.
+  // Every filter size up to the largest any machine profile allows (1-11 x 1-11 for `ideal`),
+  // general and separable, every base format and border mode, on images wider, narrower and
+  // smaller than the filter.
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  int largest_width = 0, largest_height = 0;
+  for (const MachineProfile& p : machine_profiles()) {
+    largest_width = std::max(largest_width, p.limits.max_convolution_width);
+    largest_height = std::max(largest_height, p.limits.max_convolution_height);
+  }
+  ASSERT_GE(largest_width, 11);
   std::mt19937 rng(2211);
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
   const GLenum bases[] = {GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY, GL_RGB, GL_RGBA};
   const GLenum borders[] = {GL_REDUCE, GL_CONSTANT_BORDER, GL_REPLICATE_BORDER};
-  for (int trial = 0; trial < 400; ++trial) {
+  const int trials = 3 * largest_width * largest_height;
+  for (int trial = 0; trial < trials; ++trial) {
     ConvolutionFilter f;
     f.base = bases[rng() % 6];
     f.border_mode = borders[rng() % 3];
     f.border_color = {coefficient(rng), coefficient(rng), coefficient(rng), coefficient(rng)};
-    f.width = 1 + static_cast<int>(rng() % 7);
-    f.height = 1 + static_cast<int>(rng() % 7);
+    f.width = 1 + (trial / 3) % largest_width;  // every size, three times
+    f.height = 1 + (trial / 3) / largest_width;
     f.separable = rng() % 4 == 0;
     auto random_rgba = [&] { return Rgba{coefficient(rng), coefficient(rng), coefficient(rng), coefficient(rng)}; };
     if (f.separable) {
@@ -115,7 +125,7 @@ TEST(PixelTransferKernels, ConvolutionAvx2MatchesTheScalarReferenceBitForBit) {
     } else {
       for (int t = 0; t < f.width * f.height; ++t) f.taps.push_back(random_rgba());
     }
-    const int width = 1 + static_cast<int>(rng() % 23), height = 1 + static_cast<int>(rng() % 9);
+    const int width = 1 + static_cast<int>(rng() % 27), height = 1 + static_cast<int>(rng() % 15);
     const std::vector<Rgba> input = random_pixels(rng, static_cast<std::size_t>(width * height));
     std::vector<Rgba> scalar = input, wide = input;
     int ws = width, hs = height, ww = width, hw = height;

@@ -1,6 +1,8 @@
 // Texturing with values computed by hand from §3.8 (and ARB/SGIX shadow).
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <limits>
 
 #include "test_util.hpp"
@@ -458,6 +460,7 @@ TEST(Fog, LinearExpExp2) {
 #include <random>
 
 #include "stages/texture_stage.hpp"
+#include "stages/kernel_paths.hpp"
 
 TEST(TextureFastPath, NearestAndLinearReplaceMatchTheGeneralPath) {
   // Random textured triangles (projective coordinates, every wrap mode, borders, 1D and 2D,
@@ -500,15 +503,16 @@ TEST(TextureFastPath, NearestAndLinearReplaceMatchTheGeneralPath) {
       ctx.glEnd();
     }
   };
+  std::optional<ScopedKernelPaths> paths;  // the general paths for the second drawing
   for (GLenum filter : {GL_NEAREST, GL_LINEAR}) {
     TextureStage::reset_fast_path_fragments_here();
     for (int bits : {5, 8, 12}) {
       for (unsigned seed = 1; seed <= 40; ++seed) {
         Context fast(test::small_config(32, 32, bits)), general(test::small_config(32, 32, bits));
         draw(fast, seed, filter);
-        TextureStage::general_path_only = true;
+        paths.emplace(KernelPaths{KernelPaths::Simd::Avx2, false});
         draw(general, seed, filter);
-        TextureStage::general_path_only = false;
+        paths.reset();
         ASSERT_EQ(fast.framebuffer().color[0].rgba, general.framebuffer().color[0].rgba)
             << enum_name(filter) << " " << bits << " " << seed;
         ASSERT_TRUE(fast.total_counters() == general.total_counters()) << enum_name(filter) << " " << bits << " " << seed;

@@ -258,6 +258,7 @@ class ApitraceReplayer {
     } catch (const BudgetExceeded& e) {
       stop(call, e.what());
     }
+    out_.result.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*out_.result.context, options_.strict, options_.diagnostics);
     if (options_.record) {
       options_.record->write_header(s);

@@ -31,6 +31,7 @@ struct ApitraceOptions {
   std::ostream* diagnostics = nullptr;  // GL errors as they happen
   TraceWriter* record = nullptr;        // write the replay as a canonical .pass (passim convert)
   std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
+  Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
 };
 
 // A call passim did not replay, once per name.

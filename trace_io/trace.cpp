@@ -409,6 +409,7 @@ class Replayer {
     } catch (const BudgetExceeded& e) {
       fail(e.what());
     }
+    result_.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
     if (options_.record) {
       options_.record->write_header(s);

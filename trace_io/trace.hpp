@@ -55,6 +55,7 @@ struct ReplayOptions {
   std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
   // Folders besides the trace's own that side files may come from (side_files.hpp).
   std::vector<std::filesystem::path> allow_files;
+  Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
 };
 
 struct ReplayResult {
