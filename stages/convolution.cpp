@@ -2,69 +2,10 @@
 
 #include <algorithm>
 
-#include "stages/avx2.hpp"
 #include "stages/kernel_paths.hpp"
 
 namespace passim {
 
-namespace {
-
-// The taps as each output component reads them (tap[n + m·wf][k] is the filter component
-// that component k is multiplied by), and which components the filter convolves.
-struct InteriorRows {
-  const Rgba* image;
-  int ws, wf, hf, cw, ch;
-  const Rgba* taps;
-  bool conv[4];
-  Rgba* out;
-  int wo;
-};
-
-#if defined(PASSIM_HAVE_AVX2_KERNEL)
-// Output pixels (i, j), i in [i0, i1), whose whole footprint is inside the image: the sum
-// over (m, n) in the reference's order, starting from +0, one multiply and one add per tap
-// (no FMA); two pixels at a time so that their additions overlap. Components the filter
-// does not convolve take the anchor pixel's value, as in the reference.
-__attribute__((target("avx2"))) inline void store_output(const InteriorRows& r, int j, int i, __m256d sum,
-                                                         __m256d keep) {
-  const __m256d anchor = _mm256_loadu_pd(r.image[static_cast<std::size_t>(j) * static_cast<std::size_t>(r.ws) + static_cast<std::size_t>(i)].data());
-  _mm256_storeu_pd(r.out[static_cast<std::size_t>(j) * static_cast<std::size_t>(r.wo) + static_cast<std::size_t>(i)].data(),
-                   _mm256_blendv_pd(sum, anchor, keep));
-}
-
-__attribute__((target("avx2"))) void convolve_interior_avx2(const InteriorRows& r, int j, int i0, int i1) {
-  const __m256d keep = _mm256_castsi256_pd(_mm256_setr_epi64x(r.conv[0] ? 0 : -1, r.conv[1] ? 0 : -1,
-                                                              r.conv[2] ? 0 : -1, r.conv[3] ? 0 : -1));
-  const std::size_t ws = static_cast<std::size_t>(r.ws), wf = static_cast<std::size_t>(r.wf);
-  int i = i0;
-  for (; i + 1 < i1; i += 2) {
-    __m256d sum0 = _mm256_setzero_pd(), sum1 = _mm256_setzero_pd();
-    for (int m = 0; m < r.hf; ++m) {
-      const Rgba* s = r.image + static_cast<std::size_t>(j - r.ch + m) * ws + static_cast<std::size_t>(i - r.cw);
-      const Rgba* t = r.taps + static_cast<std::size_t>(m) * wf;
-      for (std::size_t n = 0; n < wf; ++n) {
-        const __m256d tap = _mm256_loadu_pd(t[n].data());
-        sum0 = _mm256_add_pd(sum0, _mm256_mul_pd(_mm256_loadu_pd(s[n].data()), tap));
-        sum1 = _mm256_add_pd(sum1, _mm256_mul_pd(_mm256_loadu_pd(s[n + 1].data()), tap));
-      }
-    }
-    store_output(r, j, i, sum0, keep);
-    store_output(r, j, i + 1, sum1, keep);
-  }
-  for (; i < i1; ++i) {
-    __m256d sum = _mm256_setzero_pd();
-    for (int m = 0; m < r.hf; ++m) {
-      const Rgba* s = r.image + static_cast<std::size_t>(j - r.ch + m) * ws + static_cast<std::size_t>(i - r.cw);
-      const Rgba* t = r.taps + static_cast<std::size_t>(m) * wf;
-      for (std::size_t n = 0; n < wf; ++n)
-        sum = _mm256_add_pd(sum, _mm256_mul_pd(_mm256_loadu_pd(s[n].data()), _mm256_loadu_pd(t[n].data())));
-    }
-    store_output(r, j, i, sum, keep);
-  }
-}
-#endif
-
-}  // namespace
 
 
 Rgba ConvolutionFilter::tap(int n, int m) const {

@@ -41,4 +41,19 @@ void convolve(std::vector<Rgba>& image, int& width, int& height, const Convoluti
               ConvolutionKernel kernel = ConvolutionKernel::Fastest, std::vector<Rgba>* spare = nullptr,
               const RowSplitter* split = nullptr);
 
+// The fast path's view of a convolution (convolution_fast.cpp): the taps as each output
+// component reads them (tap[n + m·wf][k] is the filter component that component k is multiplied
+// by), and which components the filter convolves.
+struct InteriorRows {
+  const Rgba* image;
+  int ws, wf, hf, cw, ch;
+  const Rgba* taps;
+  bool conv[4];
+  Rgba* out;
+  int wo;
+};
+// Output pixels (i, j), i in [i0, i1), of row j whose whole footprint lies inside the image, by
+// the AVX2 kernel (where the processor has it): the reference's sum in its order.
+void convolve_interior_avx2(const InteriorRows& rows, int j, int i0, int i1);
+
 }  // namespace passim

@@ -1,6 +1,7 @@
-// The rasterizer's per-fragment arithmetic over one span: a plain scalar reference and
-// an SSE2 kernel that computes the same IEEE operations in the same order, so the two
-// agree bit for bit (tests/span_kernels_test.cpp checks them on random input).
+// The rasterizer's per-fragment arithmetic over one span: a plain scalar reference
+// (span_kernels.cpp) and SSE2 and AVX2 kernels that compute the same IEEE operations in the same
+// order (span_kernels_fast.cpp), so they agree bit for bit (tests/span_kernels_test.cpp checks
+// them on random input). The unsuffixed functions choose (stages/kernel_paths.hpp).
 #pragma once
 #include <cstdint>
 
