@@ -21,6 +21,11 @@ struct PixelStore {
   int alignment = 4;
 };
 
+// Table 6.20 (pixel storage): the modes for packing and for unpacking.
+struct PixelStoreState {
+  PixelStore pack, unpack;
+};
+
 using Rgba = std::array<double, 4>;
 
 // A bitmap (§3.6.4, type BITMAP: one bit per pixel; rows of ⌈row length / 8⌉ bytes padded to

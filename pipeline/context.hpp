@@ -1,6 +1,9 @@
 // Context: the OpenGL 1.2 (+ ARB_imaging) entry points with the spec's error
 // semantics (§2.5: an erroneous call has no effect and sets an error flag).
-// Each entry point validates, then updates state or hands work to a stage.
+// Each entry point validates, then updates state or hands work to a stage. The entry points
+// are grouped below as the spec's state groups are, each group in its own file
+// (pipeline/context_<group>.cpp, named beside each group); the state is the structs of
+// pipeline/state.hpp, grouped as chapter 6's tables group it (docs/architecture.md).
 #pragma once
 #include <array>
 #include <functional>
@@ -60,7 +63,7 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
-  // ---- errors and state (§2.5, §2.11, §6.1) ----
+  // ---- errors, enables and queries (§2.5, §2.11, §6.1): context_state.cpp ----
   GLenum glGetError();
   void glEnable(GLenum cap);
   void glDisable(GLenum cap);
@@ -73,7 +76,7 @@ class Context {
   void glFlush();
   void glFinish();
 
-  // ---- framebuffer control and clears (§4.2) ----
+  // ---- framebuffer control, clears and accumulation (§4.2): context_framebuffer.cpp ----
   void glClear(GLbitfield mask);
   void glClearColor(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
   void glClearDepth(GLdouble depth);
@@ -86,7 +89,7 @@ class Context {
   void glDrawBuffer(GLenum mode);
   void glReadBuffer(GLenum mode);
 
-  // ---- per-fragment operations (§4.1) ----
+  // ---- per-fragment operations (§4.1): context_fragment.cpp ----
   void glScissor(GLint x, GLint y, GLsizei width, GLsizei height);
   void glAlphaFunc(GLenum func, GLclampf ref);
   void glStencilFunc(GLenum func, GLint ref, GLuint mask);
@@ -97,7 +100,7 @@ class Context {
   void glBlendColor(GLclampf r, GLclampf g, GLclampf b, GLclampf a);
   void glLogicOp(GLenum opcode);
 
-  // ---- coordinate transformation (§2.10) ----
+  // ---- coordinate transformation (§2.10): context_transform.cpp ----
   void glViewport(GLint x, GLint y, GLsizei width, GLsizei height);
   void glDepthRange(GLclampd near_val, GLclampd far_val);
   void glMatrixMode(GLenum mode);
@@ -122,7 +125,7 @@ class Context {
   void gluLookAt(GLdouble ex, GLdouble ey, GLdouble ez, GLdouble cx, GLdouble cy, GLdouble cz, GLdouble ux,
                  GLdouble uy, GLdouble uz);
 
-  // ---- vertices (§2.6-2.7) ----
+  // ---- vertices, Begin/End, rectangles (§2.6-2.9): context_vertices.cpp ----
   void glBegin(GLenum mode);
   void glEnd();
   void glVertex2f(GLfloat x, GLfloat y);
@@ -173,7 +176,7 @@ class Context {
   void glTexCoord3fv(const GLfloat* v);
   void glTexCoord4fv(const GLfloat* v);
 
-  // ---- vertex arrays (§2.8) ----
+  // ---- vertex arrays (§2.8): context_arrays.cpp ----
   void glEnableClientState(GLenum array);
   void glDisableClientState(GLenum array);
   void glVertexPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
@@ -184,7 +187,7 @@ class Context {
   void glDrawArrays(GLenum mode, GLint first, GLsizei count);
   void glDrawElements(GLenum mode, GLsizei count, GLenum type, const void* indices);
 
-  // ---- display lists (§5.4) ----
+  // ---- display lists (§5.4): context_lists.cpp ----
   void glNewList(GLuint list, GLenum mode);
   void glEndList();
   void glCallList(GLuint list);
@@ -194,7 +197,7 @@ class Context {
   GLboolean glIsList(GLuint list);
   void glListBase(GLuint base);
 
-  // ---- lighting (§2.13) ----
+  // ---- lighting (§2.13): context_lighting.cpp ----
   void glShadeModel(GLenum mode);
   void glLightf(GLenum light, GLenum pname, GLfloat param);
   void glLighti(GLenum light, GLenum pname, GLint param);
@@ -206,7 +209,7 @@ class Context {
   void glMaterialfv(GLenum face, GLenum pname, const GLfloat* params);
   void glColorMaterial(GLenum face, GLenum mode);
 
-  // ---- rasterization (§3.3-3.5) ----
+  // ---- points, lines and polygons (§3.3-3.5): context_rasterization.cpp ----
   void glCullFace(GLenum mode);
   void glFrontFace(GLenum mode);
   void glPolygonMode(GLenum face, GLenum mode);
@@ -214,16 +217,17 @@ class Context {
   void glPointSize(GLfloat size);
   void glLineWidth(GLfloat width);
 
-  // ---- passes: EXT_debug_marker ----
+  // ---- passes, EXT_debug_marker: context.cpp ----
   void glPushGroupMarkerEXT(GLsizei length, const GLchar* marker);
   void glPopGroupMarkerEXT();
   void glInsertEventMarkerEXT(GLsizei length, const GLchar* marker);
 
-  // ---- pixel storage (§3.6.1) ----
+  // ---- pixel storage (§3.6.1): context_pixels.cpp ----
   void glPixelStorei(GLenum pname, GLint param);
   void glPixelStoref(GLenum pname, GLfloat param);
 
-  // ---- textures (§3.8, SGIX_depth_texture, SGIX_shadow, ARB_shadow) ----
+  // ---- texture objects, images, parameters (§3.8, SGIX_depth_texture, SGIX_shadow, ARB_shadow):
+  //      context_texture.cpp; environment and coordinate generation: context_texture_env.cpp ----
   void glGenTextures(GLsizei n, GLuint* textures);
   void glDeleteTextures(GLsizei n, const GLuint* textures);
   void glBindTexture(GLenum target, GLuint texture);
@@ -265,12 +269,13 @@ class Context {
   void glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params);
   void glTexGendv(GLenum coord, GLenum pname, const GLdouble* params);
 
-  // ---- fog (§3.10) ----
+  // ---- fog (§3.10): context_texture_env.cpp ----
   void glFogf(GLenum pname, GLfloat param);
   void glFogi(GLenum pname, GLint param);
   void glFogfv(GLenum pname, const GLfloat* params);
 
-  // ---- raster position and pixel rectangles (§2.12, §3.6, §4.3) ----
+  // ---- raster position, pixel maps and transfer, pixel rectangles (§2.12, §3.6, §4.3):
+  //      context_pixels.cpp ----
   void glRasterPos2i(GLint x, GLint y);
   void glRasterPos2f(GLfloat x, GLfloat y);
   void glRasterPos3f(GLfloat x, GLfloat y, GLfloat z);
@@ -291,7 +296,7 @@ class Context {
   void glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yorig, GLfloat xmove, GLfloat ymove,
                 const GLubyte* bitmap);
 
-  // ---- imaging subset: colour tables (ARB_imaging) ----
+  // ---- the imaging subset (ARB_imaging): context_imaging.cpp ----
   void glColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
                     const void* table);
   void glColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format, GLenum type, const void* data);
@@ -321,7 +326,7 @@ class Context {
   void glResetMinmax(GLenum target);
   void glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values);
 
-  // ---- window system (what glXSwapBuffers does) ----
+  // ---- window system (what glXSwapBuffers does): context.cpp ----
   void swap_buffers();
 
   // ---- passim: inspection, recording, counters ----
@@ -647,32 +652,10 @@ class Context {
   ClientArrayState arrays_;
   std::map<GLenum, bool> unmodelled_caps_;  // enables accepted and stored, not yet modelled
   bool texturing_enabled_ = false;
-  // Table 6.18-6.20 (texturing), Table 6.17 (pixel storage).
-  struct TexGenState {
-    bool enabled = false;
-    GLenum mode = GL_EYE_LINEAR;
-    Vec4 object_plane{0.0}, eye_plane{0.0};
-  };
-  struct TextureState {
-    bool enabled_1d = false, enabled_2d = false;
-    GLuint bound_1d = 0, bound_2d = 0;
-    TextureObject default_1d, default_2d;
-    std::map<GLuint, TextureObject> objects;
-    std::map<GLuint, bool> reserved;  // names handed out by glGenTextures
-    GLenum env_mode = GL_MODULATE;
-    Vec4 env_color{0.0, 0.0, 0.0, 0.0};
-    std::array<TexGenState, 4> gen{};
-  } textures_;
-  struct PixelStoreState {
-    PixelStore pack, unpack;
-  } pixel_store_;
+  TextureState textures_;
+  PixelStoreState pixel_store_;
   FogState fog_;
-  // Table 6.6 (current raster position) and Table 6.17 (pixel transfer, zoom).
-  struct RasterPosState {
-    bool valid = true;
-    RasterVertex window{};
-    Vec4 color{1.0, 1.0, 1.0, 1.0};
-  } raster_;
+  RasterPosState raster_;
   PixelTransferState transfer_;
   double zoom_x_ = 1.0, zoom_y_ = 1.0;
   std::vector<ColorBufferId> draw_buffer_ids_;

@@ -1,13 +1,13 @@
-// Context: the imaging subset's colour tables (ARB_imaging, §3.6.3 of GL 1.2.1).
-#include <fmt/format.h>
-
+// Context: the imaging subset (ARB_imaging): colour tables, convolution filters, the
+// histogram and minmax.
 #include <algorithm>
 #include <cstring>
+#include <fmt/format.h>
 
+#include "client/pixel_pack.hpp"
 #include "pipeline/context.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "pipeline/texture.hpp"
-#include "client/pixel_pack.hpp"
 
 namespace passim {
 
@@ -175,7 +175,6 @@ void Context::glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* par
 }  // namespace passim
 
 namespace passim {
-
 // ---------------------------------------------------------------- convolution filters
 
 ConvolutionFilter* Context::filter_for(GLenum target) {
@@ -341,7 +340,6 @@ void Context::glConvolutionParameterfv(GLenum target, GLenum pname, const GLfloa
 }  // namespace passim
 
 namespace passim {
-
 // ---------------------------------------------------------------- histogram and minmax
 
 namespace {

@@ -1,11 +1,10 @@
 // Context: display lists (§5.4). A list holds calls as the call table describes
 // them; executing it invokes each through the table, as a replayed trace does.
-#include <fmt/format.h>
-
 #include <array>
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <fmt/format.h>
 #include <iterator>
 #include <limits>
 #include <map>

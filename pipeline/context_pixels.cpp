@@ -1,20 +1,55 @@
-// Context: the current raster position (§2.12) and pixel rectangles (§3.6, §4.3):
-// glDrawPixels, glReadPixels, glCopyPixels, glPixelZoom, glPixelTransfer.
+// Context: pixel storage (§3.6.1), the raster position (§2.12), pixel maps and transfer
+// (§3.6.3), and pixel rectangles: DrawPixels, ReadPixels, CopyPixels, Bitmap (§3.6-3.7, §4.3).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
-
-#include <atomic>
-
+#include "client/glu_mipmaps.hpp"
+#include "client/pixel_pack.hpp"
 #include "pipeline/context.hpp"
 #include "pipeline/context_scratch.hpp"
 #include "pipeline/fixed_point.hpp"
 #include "stages/clipping.hpp"
-#include "client/pixel_pack.hpp"
+#include "stages/kernel_paths.hpp"
 #include "stages/pixel_transfer.hpp"
+#include "stages/texture_sample.hpp"
 
 namespace passim {
+
+// ---------------------------------------------------------------- pixel storage
+
+void Context::glPixelStorei(GLenum pname, GLint param) {
+  PASSIM_ENTRY(pname, param)
+  PixelStore* s = nullptr;
+  switch (pname) {
+    case GL_PACK_SWAP_BYTES: case GL_PACK_LSB_FIRST: case GL_PACK_ROW_LENGTH: case GL_PACK_SKIP_ROWS:
+    case GL_PACK_SKIP_PIXELS: case GL_PACK_ALIGNMENT: s = &pixel_store_.pack; break;
+    case GL_UNPACK_SWAP_BYTES: case GL_UNPACK_LSB_FIRST: case GL_UNPACK_ROW_LENGTH: case GL_UNPACK_SKIP_ROWS:
+    case GL_UNPACK_SKIP_PIXELS: case GL_UNPACK_ALIGNMENT: s = &pixel_store_.unpack; break;
+    default: return set_error(GL_INVALID_ENUM);
+  }
+  switch (pname) {
+    case GL_PACK_SWAP_BYTES: case GL_UNPACK_SWAP_BYTES: s->swap_bytes = param != 0; break;
+    case GL_PACK_LSB_FIRST: case GL_UNPACK_LSB_FIRST: s->lsb_first = param != 0; break;
+    case GL_PACK_ALIGNMENT: case GL_UNPACK_ALIGNMENT:
+      if (param != 1 && param != 2 && param != 4 && param != 8) return set_error(GL_INVALID_VALUE);
+      s->alignment = param;
+      break;
+    default:
+      if (param < 0) return set_error(GL_INVALID_VALUE);
+      if (pname == GL_PACK_ROW_LENGTH || pname == GL_UNPACK_ROW_LENGTH) s->row_length = param;
+      else if (pname == GL_PACK_SKIP_ROWS || pname == GL_UNPACK_SKIP_ROWS) s->skip_rows = param;
+      else s->skip_pixels = param;
+      break;
+  }
+}
+
+void Context::glPixelStoref(GLenum pname, GLfloat param) {
+  PASSIM_ENTRY(pname, param)
+  // §3.6.1: a float parameter is rounded to the nearest integer (booleans: nonzero is true).
+  glPixelStorei(pname, static_cast<GLint>(round_half_up(clamp_nan_low(param, -2147483648.0, 2147483647.0))));
+}
 
 // ---------------------------------------------------------------- raster position (§2.12)
 
@@ -97,7 +132,6 @@ void Context::glPixelTransferi(GLenum pname, GLint param) {
   else if (pname == GL_INDEX_OFFSET) transfer_.index_offset = param;
   else glPixelTransferf(pname, static_cast<GLfloat>(param));
 }
-
 // ---------------------------------------------------------------- pixel maps (§3.6.3)
 
 void Context::set_pixel_map(GLenum map, GLsizei mapsize, const double* values) {
@@ -147,7 +181,6 @@ void Context::glPixelMapuiv(GLenum map, GLsizei mapsize, const GLuint* values) {
   PASSIM_ENTRY(map, mapsize, values)
   set_pixel_map(map, mapsize, pixel_map_values(map, mapsize, values, 4294967295.0).data());
 }
-
 // ---------------------------------------------------------------- rectangles to fragments (§3.6.4)
 
 Context::RasterFragments Context::raster_fragments(const TriangleOptions& options) const {

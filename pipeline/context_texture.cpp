@@ -1,54 +1,18 @@
-// Context: pixel storage (§3.6.1) and texturing (§3.8): texture objects and images,
-// parameters, environment and coordinate generation. Sampling lives in
-// stages/texture_sample.cpp, the environment in stages/texture_env.cpp.
-#include <fmt/format.h>
-
+// Context: texture objects (§3.8.12), images and their copies (§3.8.1-3.8.3) and texture
+// parameters (§3.8.4).
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
-#include "pipeline/context.hpp"
-#include "stages/kernel_paths.hpp"
-#include "pipeline/context_scratch.hpp"
-#include "pipeline/fixed_point.hpp"
 #include "client/glu_mipmaps.hpp"
 #include "client/pixel_pack.hpp"
+#include "pipeline/context.hpp"
+#include "pipeline/context_scratch.hpp"
+#include "pipeline/fixed_point.hpp"
+#include "stages/kernel_paths.hpp"
 #include "stages/texture_sample.hpp"
 
 namespace passim {
-
-// ---------------------------------------------------------------- pixel storage
-
-void Context::glPixelStorei(GLenum pname, GLint param) {
-  PASSIM_ENTRY(pname, param)
-  PixelStore* s = nullptr;
-  switch (pname) {
-    case GL_PACK_SWAP_BYTES: case GL_PACK_LSB_FIRST: case GL_PACK_ROW_LENGTH: case GL_PACK_SKIP_ROWS:
-    case GL_PACK_SKIP_PIXELS: case GL_PACK_ALIGNMENT: s = &pixel_store_.pack; break;
-    case GL_UNPACK_SWAP_BYTES: case GL_UNPACK_LSB_FIRST: case GL_UNPACK_ROW_LENGTH: case GL_UNPACK_SKIP_ROWS:
-    case GL_UNPACK_SKIP_PIXELS: case GL_UNPACK_ALIGNMENT: s = &pixel_store_.unpack; break;
-    default: return set_error(GL_INVALID_ENUM);
-  }
-  switch (pname) {
-    case GL_PACK_SWAP_BYTES: case GL_UNPACK_SWAP_BYTES: s->swap_bytes = param != 0; break;
-    case GL_PACK_LSB_FIRST: case GL_UNPACK_LSB_FIRST: s->lsb_first = param != 0; break;
-    case GL_PACK_ALIGNMENT: case GL_UNPACK_ALIGNMENT:
-      if (param != 1 && param != 2 && param != 4 && param != 8) return set_error(GL_INVALID_VALUE);
-      s->alignment = param;
-      break;
-    default:
-      if (param < 0) return set_error(GL_INVALID_VALUE);
-      if (pname == GL_PACK_ROW_LENGTH || pname == GL_UNPACK_ROW_LENGTH) s->row_length = param;
-      else if (pname == GL_PACK_SKIP_ROWS || pname == GL_UNPACK_SKIP_ROWS) s->skip_rows = param;
-      else s->skip_pixels = param;
-      break;
-  }
-}
-
-void Context::glPixelStoref(GLenum pname, GLfloat param) {
-  PASSIM_ENTRY(pname, param)
-  // §3.6.1: a float parameter is rounded to the nearest integer (booleans: nonzero is true).
-  glPixelStorei(pname, static_cast<GLint>(round_half_up(clamp_nan_low(param, -2147483648.0, 2147483647.0))));
-}
 
 // ---------------------------------------------------------------- texture objects (§3.8.12)
 
@@ -106,7 +70,6 @@ GLboolean Context::glIsTexture(GLuint texture) {
   PASSIM_ENTRY_RET(GL_FALSE, texture)
   return texture != 0 && textures_.objects.count(texture) ? GL_TRUE : GL_FALSE;
 }
-
 // ---------------------------------------------------------------- images (§3.8.1-3.8.3)
 
 namespace {
@@ -671,7 +634,6 @@ void Context::glGetTexImage(GLenum target, GLint level, GLenum format, GLenum ty
   }
   pack_rgba(out, l.width, l.height, format, type, pixel_store_.pack, pixels);
 }
-
 // ---------------------------------------------------------------- parameters (§3.8.4)
 
 void Context::set_tex_parameter(GLenum target, GLenum pname, const double* v) {
@@ -815,187 +777,6 @@ void Context::glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname,
     case GL_TEXTURE_DEPTH_SIZE: params[0] = f.depth; break;
     default: return set_error(GL_INVALID_ENUM);
   }
-}
-
-// ---------------------------------------------------------------- environment (§3.8.9)
-
-void Context::set_tex_env(GLenum target, GLenum pname, const double* v) {
-  if (target != GL_TEXTURE_ENV) return set_error(GL_INVALID_ENUM);
-  if (pname == GL_TEXTURE_ENV_MODE) {
-    const GLenum m = enum_param(v[0]);
-    if (m != GL_MODULATE && m != GL_DECAL && m != GL_BLEND && m != GL_REPLACE && m != GL_ADD)
-      return set_error(GL_INVALID_ENUM);
-    textures_.env_mode = m;
-  } else if (pname == GL_TEXTURE_ENV_COLOR) {
-    textures_.env_color = Vec4(clamp_nan_low(v[0], 0, 1), clamp_nan_low(v[1], 0, 1), clamp_nan_low(v[2], 0, 1),
-                               clamp_nan_low(v[3], 0, 1));
-  } else {
-    set_error(GL_INVALID_ENUM);
-  }
-}
-
-void Context::glTexEnvi(GLenum target, GLenum pname, GLint param) {
-  PASSIM_ENTRY(target, pname, param)
-  scalar_parameter(pname == GL_TEXTURE_ENV_COLOR, param, [&](const double* v) { set_tex_env(target, pname, v); });
-}
-
-void Context::glTexEnvf(GLenum target, GLenum pname, GLfloat param) {
-  PASSIM_ENTRY(target, pname, param)
-  scalar_parameter(pname == GL_TEXTURE_ENV_COLOR, param, [&](const double* v) { set_tex_env(target, pname, v); });
-}
-
-void Context::glTexEnvfv(GLenum target, GLenum pname, const GLfloat* params) {
-  const int n = pname == GL_TEXTURE_ENV_COLOR ? 4 : 1;
-  PASSIM_ENTRY(target, pname, params)
-  vector_parameter(params, n, [&](const double* v) { set_tex_env(target, pname, v); });
-}
-
-// ---------------------------------------------------------------- coordinate generation (§2.10.4)
-
-void Context::set_tex_gen(GLenum coord, GLenum pname, const double* v) {
-  if (coord < GL_S || coord > GL_Q) return set_error(GL_INVALID_ENUM);
-  TexGenState& g = textures_.gen[coord - GL_S];
-  switch (pname) {
-    case GL_TEXTURE_GEN_MODE: {
-      const GLenum m = enum_param(v[0]);
-      if (m != GL_OBJECT_LINEAR && m != GL_EYE_LINEAR && m != GL_SPHERE_MAP) return set_error(GL_INVALID_ENUM);
-      if (m == GL_SPHERE_MAP && (coord == GL_R || coord == GL_Q)) return set_error(GL_INVALID_ENUM);
-      g.mode = m;
-      break;
-    }
-    case GL_OBJECT_PLANE: g.object_plane = Vec4(v[0], v[1], v[2], v[3]); break;
-    case GL_EYE_PLANE:
-      // The plane is transformed by the inverse modelview at this call: p' = p·M⁻¹.
-      g.eye_plane = Vec4(v[0], v[1], v[2], v[3]) * glm::inverse(transform_.modelview.back());
-      break;
-    default: return set_error(GL_INVALID_ENUM);
-  }
-}
-
-void Context::glTexGeni(GLenum coord, GLenum pname, GLint param) {
-  PASSIM_ENTRY(coord, pname, param)
-  scalar_parameter(pname != GL_TEXTURE_GEN_MODE, param, [&](const double* v) { set_tex_gen(coord, pname, v); });
-}
-
-void Context::glTexGenf(GLenum coord, GLenum pname, GLfloat param) {
-  PASSIM_ENTRY(coord, pname, param)
-  scalar_parameter(pname != GL_TEXTURE_GEN_MODE, param, [&](const double* v) { set_tex_gen(coord, pname, v); });
-}
-
-void Context::glTexGenfv(GLenum coord, GLenum pname, const GLfloat* params) {
-  const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
-  PASSIM_ENTRY(coord, pname, params)
-  vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
-}
-
-void Context::glTexGendv(GLenum coord, GLenum pname, const GLdouble* params) {
-  const int n = pname == GL_TEXTURE_GEN_MODE ? 1 : 4;
-  PASSIM_ENTRY(coord, pname, params)
-  vector_parameter(params, n, [&](const double* v) { set_tex_gen(coord, pname, v); });
-}
-
-// ---------------------------------------------------------------- per primitive
-
-FragmentStagesSetup Context::fragment_stages_setup(TriangleOptions& options) {
-  // The stages a primitive's fragments pass through: [texture] -> [fog] -> per-fragment ops.
-  FragmentStagesSetup setup;
-  setup.ops = fragment_ops_input();
-  // §4.1.5: with the depth test disabled no stage reads a fragment's depth (the stencil test
-  // then counts it as passing the depth test and the depth plane is not written), so the
-  // rasterizer need not compute it: a target without depth bits fills zeros.
-  setup.target = RasterTarget{fb_.config.width, fb_.config.height, profile_.limits.subpixel_bits,
-                              fragment_.depth_test ? fb_.config.depth_bits : 0, fragment_bits_};
-  setup.fog = options.fog = fog_.enabled;
-  setup.fog_state = fog_;
-  options.texcoords = false;
-  options.lod = false;
-  if (!texturing_enabled_) return setup;
-  // §3.8.15: TEXTURE_2D takes precedence over TEXTURE_1D; an incomplete texture disables texturing.
-  const GLenum target = textures_.enabled_2d ? GL_TEXTURE_2D : GL_TEXTURE_1D;
-  const int dims = target == GL_TEXTURE_2D ? 2 : 1;
-  const TextureObject& tex = *texture_for(target);
-  const int last = texture_complete_levels(tex, dims);
-  if (last < 0) {
-    warn_once(fmt::format("{} is enabled but its texture is incomplete: texturing is disabled (§3.8.10)",
-                          enum_name(target)));
-    return setup;
-  }
-  const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
-  options.texcoords = true;
-  options.lod = texture_needs_lod(tex);
-  options.lod_width = base.width - 2 * base.border;
-  options.lod_height = dims == 2 ? base.height - 2 * base.border : 1;
-  options.min_lod = tex.min_lod;
-  options.max_lod = tex.max_lod;
-  // The texture stage reads t only for a 2D texture and r only for a depth comparison.
-  options.texcoords_used = (tex.compare_sgix || tex.compare_mode == GL_COMPARE_R_TO_TEXTURE) ? 3 : dims;
-  setup.texture = true;
-  setup.texture_setup = TextureStageSetup{
-      &tex, dims, last, textures_.env_mode, textures_.env_color, fragment_bits_, profile_.arithmetic.texture_filter_8_8};
-  return setup;
-}
-
-const FragmentStagesSetup& Context::primitive_stages_setup(TriangleOptions& options) {
-  if (!primitive_setup_valid_) {
-    scratch_->primitive_options = TriangleOptions{};
-    scratch_->primitive_setup = fragment_stages_setup(scratch_->primitive_options);
-    if (!scratch_->lanes) scratch_->stages.connect(scratch_->primitive_setup);
-    primitive_setup_valid_ = true;
-  }
-  options = scratch_->primitive_options;
-  return scratch_->primitive_setup;
-}
-
-FragmentOpsInput Context::fragment_ops_input() const {
-  return FragmentOpsInput{&fragment_, &fb_control_, &draw_buffer_ids_, &fragment_bits_, &profile_.arithmetic};
-}
-
-void Context::prepare_fragment_stages(TriangleOptions& options) {
-  primitive_setup_valid_ = false;  // the stages are connected to another setup now
-  scratch_->stages.connect(fragment_stages_setup(options));
-}
-
-FragmentSink& Context::fragment_sink() { return *scratch_->stages.first; }
-
-// ---------------------------------------------------------------- fog (§3.10)
-
-void Context::set_fog(GLenum pname, const double* v) {
-  switch (pname) {
-    case GL_FOG_MODE: {
-      const GLenum m = enum_param(v[0]);
-      if (m != GL_LINEAR && m != GL_EXP && m != GL_EXP2) return set_error(GL_INVALID_ENUM);
-      fog_.mode = m;
-      break;
-    }
-    case GL_FOG_DENSITY:
-      if (v[0] < 0.0) return set_error(GL_INVALID_VALUE);
-      fog_.density = v[0];
-      break;
-    case GL_FOG_START: fog_.start = v[0]; break;
-    case GL_FOG_END: fog_.end = v[0]; break;
-    case GL_FOG_COLOR:
-      fog_.color = Vec4(clamp_nan_low(v[0], 0, 1), clamp_nan_low(v[1], 0, 1), clamp_nan_low(v[2], 0, 1),
-                        clamp_nan_low(v[3], 0, 1));
-      break;
-    case GL_FOG_INDEX: break;  // colour-index mode: not modelled
-    default: return set_error(GL_INVALID_ENUM);
-  }
-}
-
-void Context::glFogf(GLenum pname, GLfloat param) {
-  PASSIM_ENTRY(pname, param)
-  scalar_parameter(pname == GL_FOG_COLOR, param, [&](const double* v) { set_fog(pname, v); });
-}
-
-void Context::glFogi(GLenum pname, GLint param) {
-  PASSIM_ENTRY(pname, param)
-  scalar_parameter(pname == GL_FOG_COLOR, param, [&](const double* v) { set_fog(pname, v); });
-}
-
-void Context::glFogfv(GLenum pname, const GLfloat* params) {
-  const int n = pname == GL_FOG_COLOR ? 4 : 1;
-  PASSIM_ENTRY(pname, params)
-  vector_parameter(params, n, [&](const double* v) { set_fog(pname, v); });
 }
 
 }  // namespace passim

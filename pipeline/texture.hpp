@@ -99,4 +99,24 @@ struct TextureObject {
   double shadow_ambient = 0.0;  // SGIX_shadow_ambient: the value of a failed comparison
 };
 
+// Table 6.14 (texture coordinate generation), one coordinate's.
+struct TexGenState {
+  bool enabled = false;
+  GLenum mode = GL_EYE_LINEAR;
+  Vec4 object_plane{0.0}, eye_plane{0.0};
+};
+
+// Tables 6.15-6.17 (texturing: the enables, bindings and objects) and 6.14 (texgen), with the
+// texture environment (Table 6.18 of the 1.2.1 spec).
+struct TextureState {
+  bool enabled_1d = false, enabled_2d = false;
+  GLuint bound_1d = 0, bound_2d = 0;
+  TextureObject default_1d, default_2d;
+  std::map<GLuint, TextureObject> objects;
+  std::map<GLuint, bool> reserved;  // names handed out by glGenTextures
+  GLenum env_mode = GL_MODULATE;
+  Vec4 env_color{0.0, 0.0, 0.0, 0.0};
+  std::array<TexGenState, 4> gen{};
+};
+
 }  // namespace passim

@@ -24,6 +24,13 @@ struct RasterVertex {
   bool finite_position() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
 };
 
+// Table 6.6 (the current raster position, its validity and colour).
+struct RasterPosState {
+  bool valid = true;
+  RasterVertex window{};
+  Vec4 color{1.0, 1.0, 1.0, 1.0};
+};
+
 struct RasterTarget {
   int width = 0, height = 0;  // the window: fragments outside are not produced (pixel ownership)
   int subpixel_bits = 4;
