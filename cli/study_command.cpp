@@ -754,6 +754,7 @@ std::vector<std::string> study_arguments(const StudyCommand& c) {
   add("--depth-bits", c.depth_bits);
   add("--bias", c.biases);
   add("--map", c.maps);
+  add("--figures", c.figures);
   add("--jobs", std::to_string(c.jobs));
   a.push_back("--quiet");
   return a;
@@ -840,10 +841,11 @@ std::string merge_script(const StudyCommand& c, const SlurmStudy& s, const fs::p
       "echo \"passim merge of {n} shards on $(hostname) at $(date -Is)\"\n"
       "slices=()\n"
       "for ((i = 1; i <= {n}; i++)); do slices+=(\"$STUDY/shards/$i\"); done\n"
-      "exec \"$PASSIM\" merge \"${{slices[@]}}\" --out \"$STUDY\"\n",
+      "exec \"$PASSIM\" merge \"${{slices[@]}}\" --figures {figures} --out \"$STUDY\"\n",
       fmt::arg("n", s.shards), fmt::arg("script", s.merge_script().string()), fmt::arg("job", s.merge_job()),
       fmt::arg("logs", (s.slurm_dir() / "logs").string()), fmt::arg("options", sbatch_options(c, cwd)),
-      fmt::arg("passim", shell_quote(passim.string())), fmt::arg("dir", s.dir.string()));
+      fmt::arg("passim", shell_quote(passim.string())), fmt::arg("dir", s.dir.string()),
+      fmt::arg("figures", shell_quote(c.figures)));
 }
 
 int slurm_study_command(const StudyCommand& c, const StudySweep& sweep) {

@@ -230,20 +230,24 @@ RateFit fit_rates(const std::vector<std::vector<Pass>>& runs, const std::vector<
   return best;
 }
 
-std::vector<PaperPrediction> paper_predictions(const MachineProfile& profile,
-                                               const std::vector<std::vector<Pass>>& runs, int iterations) {
-  const std::vector<PublishedFrameRate>& published = published_frame_rates();
+RateFit fit_published(const MachineProfile& profile, const std::vector<std::vector<Pass>>& runs,
+                      const std::vector<bool>& used, int iterations, const std::vector<PublishedFrameRate>& published) {
   // The search starts from round figures that owe nothing to the published rates (the
   // profile's own free rates were fitted to Figure 7, held-out points included), and keeps
   // the profile's other rates.
   CostRates start = profile.rates;
   const double neutral[] = {0.8e6, 100e6, 80e6, 20e6, 800e6, 240e6, 100e-6};
   for (std::size_t k = 0; k < std::size(neutral); ++k) free_rate(start, k) = neutral[k];
+  return fit_rates(runs, published, used, start, iterations);
+}
+
+std::vector<PaperPrediction> paper_predictions(const MachineProfile& profile, const std::vector<std::vector<Pass>>& runs,
+                                               int iterations, const std::vector<PublishedFrameRate>& published) {
   std::vector<PaperPrediction> out;
   for (std::size_t k = 0; k < published.size(); ++k) {
     std::vector<bool> used(published.size(), true);
     used[k] = false;  // held out: the rates are fitted to the other five
-    const RateFit fit = fit_rates(runs, published, used, start, iterations);
+    const RateFit fit = fit_published(profile, runs, used, iterations, published);
     MachineProfile refit = profile;
     refit.rates = fit.rates;
     PaperPrediction p;

@@ -87,6 +87,12 @@ struct RateFit {
 RateFit fit_rates(const std::vector<std::vector<Pass>>& runs, const std::vector<PublishedFrameRate>& published,
                   const std::vector<bool>& used, const CostRates& start, int iterations = 20000);
 
+// The free rates fitted to the published rates marked `used`, from round starting values
+// that owe nothing to the paper (the profile's other rates kept).
+RateFit fit_published(const MachineProfile& profile, const std::vector<std::vector<Pass>>& runs,
+                      const std::vector<bool>& used, int iterations = 20000,
+                      const std::vector<PublishedFrameRate>& published = published_frame_rates());
+
 // Each published rate beside the model's predictions: with the profile's rates, and held out
 // (leave-one-out) — with the free rates fitted to the other five published rates only.
 struct PaperPrediction {
@@ -95,7 +101,8 @@ struct PaperPrediction {
   double held_out = 0.0;      // fps with the rates fitted without this one
   double held_out_fit_margin = 0.0;  // how well the other five could be fitted
 };
-std::vector<PaperPrediction> paper_predictions(const MachineProfile& profile,
-                                               const std::vector<std::vector<Pass>>& runs, int iterations = 20000);
+std::vector<PaperPrediction> paper_predictions(const MachineProfile& profile, const std::vector<std::vector<Pass>>& runs,
+                                               int iterations = 20000,
+                                               const std::vector<PublishedFrameRate>& published = published_frame_rates());
 
 }  // namespace passim

@@ -60,7 +60,7 @@ std::string width_note(const CapturedImage& image, int channels, int file_bits) 
 
 // A PNG through libpng, with an sBIT chunk giving each channel's true width and the widths in
 // text chunks ("passim:bits", "Description"), so that readers recover the codes
-// (docs/counters.md, "Images"). Only C between setjmp and the end: libpng reports errors by
+// (docs/images.md). Only C between setjmp and the end: libpng reports errors by
 // longjmp. False, with the message in `error`, when the file cannot be written.
 struct PngSpec {
   int width = 0, height = 0, channels = 0, depth = 8;  // depth: 8 or 16 bits per sample
@@ -152,7 +152,7 @@ std::filesystem::path write_image(const CapturedImage& image, const std::filesys
   } else {
     // A code k at n bits becomes round(k·(2^f−1)/(2^n−1)) at the file's f bits: the same
     // fraction, exact when n = f, injective otherwise; its top n bits are k again, which is
-    // what sBIT (and a reader's `sample >> (f − n)`) takes (docs/counters.md, "Images").
+    // what sBIT (and a reader's `sample >> (f − n)`) takes (docs/images.md).
     auto to_file = [&](std::uint32_t k, int c) {
       const int n = image.plane == "stencil" ? image.bits[0] : image.bits[c];
       return rescale_code(k, n, file_bits);

@@ -1,6 +1,6 @@
 // Image files: colour planes as 8-bit PNG (widths <= 8) or 16-bit PNG/TIFF (wider), depth as
 // single-channel float EXR, stencil as 8-bit PNG. Each file records the planes' true widths
-// (PNG sBIT and text chunks, TIFF and EXR attributes; docs/counters.md, "Images"). PNG through
+// (PNG sBIT and text chunks, TIFF and EXR attributes; docs/images.md). PNG through
 // libpng (OpenImageIO 2.4 writes no sBIT), TIFF and EXR through OpenImageIO.
 // Files are written to a temporary name and renamed, so no half-written file remains.
 #pragma once

@@ -48,12 +48,15 @@ _MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "p", "h", "*"]
 BITS = "color_bits"
 
 
+_DPI = [100]  # raster figures' resolution (--dpi)
+
+
 def _save(fig, base: str, formats) -> list:
     written = []
     for fmt in formats:
         path = f"{base}.{fmt}"
         tmp = os.path.join(os.path.dirname(path) or ".", f".tmp-{os.path.basename(path)}")
-        fig.savefig(tmp, format=fmt, metadata=_METADATA[fmt], bbox_inches="tight", dpi=100)
+        fig.savefig(tmp, format=fmt, metadata=_METADATA[fmt], bbox_inches="tight", dpi=_DPI[0])
         os.replace(tmp, path)  # whole or not at all, as passim's other files
         written.append(path)
     plt.close(fig)
@@ -286,8 +289,8 @@ def figure7(manifest_path: str, out_path: str) -> list:
     panels, inset = m["panels"], m["inset"]
     rows = sorted({p["bits"] for p in panels})
     columns = max(sum(1 for p in panels if p["bits"] == b) for b in rows)
-    fig = plt.figure(figsize=(4.1 * columns, 6.6 * len(rows)))
-    grid = fig.add_gridspec(2 * len(rows), columns, height_ratios=[3, 3] * len(rows), hspace=0.18, wspace=0.04)
+    fig = plt.figure(figsize=(4.1 * columns, 5.7 * len(rows)), layout="constrained")
+    grid = fig.add_gridspec(2 * len(rows), columns)
     for k, p in enumerate(panels):
         r, c = rows.index(p["bits"]), [q for q in panels if q["bits"] == p["bits"]].index(p)
         image = plt.imread(p["image"])
@@ -305,7 +308,7 @@ def figure7(manifest_path: str, out_path: str) -> list:
             ax.set_xticks([])
             ax.set_yticks([])
             ax.grid(False)
-    fig.suptitle(m.get("title", "Figure 7"), fontsize=14, y=0.995)
+    fig.suptitle(m.get("title", "Figure 7"), fontsize=14)
     base, ext = os.path.splitext(out_path)
     return _save(fig, base, [ext.lstrip(".") or "png"])
 
@@ -317,10 +320,13 @@ def main(argv=None) -> int:
     s.add_argument("study_dir")
     s.add_argument("--out", help="where to write them (default: the study's folder)")
     s.add_argument("--formats", default="png,svg,pdf", help="comma-separated: png, svg, pdf")
+    s.add_argument("--dpi", type=int, default=100, help="pixels per inch of PNG files (default 100)")
     f = sub.add_parser("figure7", help="the demo's figure from its manifest")
     f.add_argument("manifest")
     f.add_argument("out")
+    f.add_argument("--dpi", type=int, default=100, help="pixels per inch of a PNG (default 100)")
     args = parser.parse_args(argv)
+    _DPI[0] = args.dpi
     if args.what == "study":
         formats = [x for x in args.formats.split(",") if x]
         for x in formats:

@@ -1,4 +1,4 @@
-"""Images keep their true width (docs/counters.md, "Images"): OpenImageIO's own tool recovers
+"""Images keep their true width (docs/images.md): OpenImageIO's own tool recovers
 the 12-bit codes of a 12-bit attenuation image, and the level count from the file equals
 passim's. The PNG's sBIT chunk is read here from the file's bytes (PNG specification §11.3.3.4)."""
 import json
@@ -110,3 +110,14 @@ def test_oiiotool_reads_a_12_bit_tiff(run12):
     codes = oiiotool_samples(out / "tiff" / "attenuation.tif") >> 4  # read back as 16 bits, the code in the top 12
     assert len(codes) == 320 * 240
     assert passim.count_levels(codes) == counters["program"]["levels"]
+
+
+def test_the_docs_numpy_recipe(run12, source_dir):
+    # docs/images.md's Python recipe, run as printed on the file made above.
+    oiio = pytest.importorskip("OpenImageIO")
+    out, counters = run12
+    block = re.search(r"```python\n(.*?)```", (source_dir / "docs" / "images.md").read_text(), re.S).group(1)
+    scope = {}
+    exec(compile(block.replace("out/pcf12", str(out)), "docs/images.md", "exec"), scope)
+    assert scope["bits"] == 12
+    assert passim.count_levels(scope["codes"]) == counters["program"]["levels"]
