@@ -9,11 +9,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <sstream>
+#include <streambuf>
 
 #include "pipeline/allocator.hpp"
 #include "trace_io/apitrace_replay.hpp"
@@ -60,6 +63,42 @@ struct RunCommand {
   std::vector<fs::path> allow_files;
 };
 
+// The replay's progress, from the re-recording the replay offers (ReplayOptions::record): the
+// calls replayed come out as canonical text about as long as the trace's own, so the bytes
+// written, against the trace's size, say how far it is (a call with a large array weighs what
+// its text weighs). They are handed on to `forward` (the --record text), or dropped.
+class ReplayMeter : public std::streambuf {
+ public:
+  ReplayMeter(std::streambuf* forward, Progress& progress, std::uintmax_t total)
+      : forward_(forward), progress_(progress), total_(std::max<std::uintmax_t>(1, total)) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (c == traits_type::eof()) return c;
+    count(1);
+    return forward_ ? forward_->sputc(static_cast<char>(c)) : c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    count(static_cast<std::uintmax_t>(n));
+    return forward_ ? forward_->sputn(s, n) : n;
+  }
+
+ private:
+  void count(std::uintmax_t n) {
+    bytes_ += n;
+    if (bytes_ >= next_) {
+      progress_.step(static_cast<int>(std::min<std::uintmax_t>(99, 100 * bytes_ / total_)));
+      next_ = bytes_ + total_ / 200 + 1;
+    }
+  }
+  std::streambuf* forward_;
+  Progress& progress_;
+  std::uintmax_t total_, bytes_ = 0, next_ = 0;
+};
+
+// A trace this large shows its progress (re-recording it costs about a quarter more time).
+constexpr std::uintmax_t kLongTraceBytes = 8u << 20;
+
 int run_command(const RunCommand& c) {
   const fs::path& trace = c.trace;
   const fs::path& out = c.out;
@@ -67,16 +106,23 @@ int run_command(const RunCommand& c) {
   const std::string& expect = c.expect;
   const std::string& record = c.record;
   std::ostringstream recorded;
-  TraceWriter writer(recorded);
+  std::error_code size_error;
+  const std::uintmax_t size = fs::file_size(trace, size_error);
+  const bool watch = !quiet && !size_error && size >= kLongTraceBytes;
+  Progress progress(fmt::format("passim run {}", trace.filename().string()), 100, !watch, "%");
+  ReplayMeter meter(record.empty() ? nullptr : recorded.rdbuf(), progress, size);
+  std::ostream metered(&meter);
+  TraceWriter writer(watch ? metered : recorded);
   ReplayOptions options;
   options.strict = c.strict;
   options.diagnostics = &std::cerr;
   options.max_memory = c.max_memory;
   options.allow_files = c.allow_files;
-  if (!record.empty()) options.record = &writer;
+  if (!record.empty() || watch) options.record = &writer;
   RunOutput result;
   try {
     result = run_trace_to_dir(trace, out, options, c.tiff);
+    progress.finish();
     if (!record.empty()) write_text_file(record, recorded.str());
   } catch (const TraceError& e) {
     std::cerr << "passim: " << e.what() << "\n";

@@ -44,7 +44,8 @@ void Progress::step(int done, const std::string& detail) {
   const bool last = done >= total_;
   if (elapsed < kQuietStart) return;
   if (!last && shown_ && since < (tty_ ? kTerminalInterval : kPlainInterval)) return;
-  std::string line = fmt::format("{}: {}/{} {}, {}", what_, done, total_, unit_, duration(elapsed));
+  std::string line = unit_ == "%" ? fmt::format("{}: {} % done, {}", what_, done, duration(elapsed))
+                                  : fmt::format("{}: {}/{} {}, {}", what_, done, total_, unit_, duration(elapsed));
   if (!last && done > 0) line += fmt::format(", about {} left", duration(seconds_left(elapsed, done, total_)));
   if (!detail.empty()) line += fmt::format(" ({})", detail);
   if (tty_)

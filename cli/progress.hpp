@@ -10,7 +10,8 @@ namespace passim {
 
 class Progress {
  public:
-  // `what` starts each line ("passim study"); `total` steps make the whole; `unit` names a step.
+  // `what` starts each line ("passim study"); `total` steps make the whole; `unit` names a step
+  // ("%": the steps are percent, and the line says "37 % done").
   Progress(std::string what, int total, bool quiet, std::string unit = "steps");
   ~Progress();
   // `done` of the total steps are finished; `detail` says which one is next or was last.
