@@ -48,7 +48,7 @@ namespace {
 std::string width_note(const CapturedImage& image, int channels, int file_bits) {
   if (image.plane == "depth")
     return fmt::format("passim: depth at {} bits; each value is code / (2^{} - 1) as a 32-bit float (code = "
-                       "round(value * (2^{} - 1)), within one code at widths past 24 bits)",
+                       "round(value * (2^{} - 1)), exact up to 24 bits; a 32-bit float keeps 24 of a wider code's)",
                        image.bits[0], image.bits[0], image.bits[0]);
   if (image.plane == "stencil") return fmt::format("passim: stencil values at {} bits, as they are", image.bits[0]);
   std::string widths;
