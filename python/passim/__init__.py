@@ -41,6 +41,10 @@ __all__ = ["run_program", "run_trace", "study_precision", "cost", "programs", "p
 
 
 def _core():
+    if _np is None:
+        import sys
+        raise ImportError(f"passim's runs need numpy, which {sys.executable} does not have (Debian's python3-numpy "
+                          "serves /usr/bin/python3: run passim from it)")
     if _passim is None:
         raise ImportError(f"passim's compiled module (_passim) is not available here: {_import_error}; "
                           "build the project with pybind11 (Debian: pybind11-dev python3-dev)")
