@@ -140,8 +140,9 @@ if(NOT LAST_ERR MATCHES "different sweeps")
 endif()
 
 # Provenance: the table ends with what a widening recovers; --out writes the JSON document.
-# Into a file (not a terminal) progress is plain lines, never a bare carriage return.
-expect_exit(0 study provenance --program fast-pcf --filter 2x2 --scene edges --size 400x300 --out ${WORK}/prov.json)
+# Into a file (not a terminal) progress is plain lines, never a bare carriage return (the run
+# takes longer than the second after which progress speaks: about 2 s here).
+expect_exit(0 study provenance --program fast-pcf --filter 2x2 --scene edges --size 640x480 --out ${WORK}/prov.json)
 if(NOT LAST_OUT MATCHES "widening (no single stage|the .* recovers)")
   message(FATAL_ERROR "provenance states no widening: ${LAST_OUT}")
 endif()
