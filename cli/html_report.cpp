@@ -1,6 +1,7 @@
 #include "cli/html_report.hpp"
 
 #include <fmt/format.h>
+#include <stdlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +9,16 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
+#include "cli/figures.hpp"
+#include "cli/progress.hpp"
+#include "programs/programs.hpp"
 #include "reports/cost.hpp"
 #include "reports/image_io.hpp"
-#include "programs/programs.hpp"
+#include "reports/paper_check.hpp"
 
 namespace fs = std::filesystem;
 
@@ -35,169 +39,268 @@ std::string escape(const std::string& s) {
   return out;
 }
 
-// RFC 4648 base64, for embedding a PNG as a data: URL.
-std::string base64(const std::string& bytes) {
-  static const char* const table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A temporary folder, removed with its files when this goes out of scope.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "passim-report-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary folder for the figures");
+    path = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+// A figure drawn by passim.figures as SVG, inline: its XML prolog dropped, the root marked as a
+// chart (or a picture), scaled to the page's width by the style sheet.
+std::string inline_svg(const fs::path& file, const char* css_class) {
+  std::string svg = read_file(file);
+  const std::size_t start = svg.find("<svg");
+  if (start == std::string::npos) throw std::runtime_error(fmt::format("{}: not an SVG file", file.string()));
+  svg = svg.substr(start);
+  svg.replace(0, 4, fmt::format("<svg class=\"{}\"", css_class));
+  return svg;
+}
+
+// study.json's columns, in the table's order, with their units (docs/studies.md).
+struct Column {
+  const char* name;
+  const char* unit;
+};
+const Column kColumns[] = {{"color_bits", "bits"},
+                           {"depth_bits", "bits"},
+                           {"map_size", "texels"},
+                           {"bias_8bit_steps", "8-bit steps"},
+                           {"levels", "count"},
+                           {"mean_abs_error", "fraction"},
+                           {"wrong_pixels", "pixels"},
+                           {"precision_bits", "bits"},
+                           {"lit_but_shadowed", "pixels"},
+                           {"shadowed_but_lit", "pixels"},
+                           {"self_shadowed", "pixels"},
+                           {"exact_lit_but_shadowed", "pixels"},
+                           {"exact_shadowed_but_lit", "pixels"},
+                           {"exact_self_shadowed", "pixels"},
+                           {"surfaces", "pixels"},
+                           {"depth_step_world", "world units"}};
+
+// "exact_shadowed_but_lit" may break after each underscore.
+std::string breakable(const std::string& name) {
   std::string out;
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8) |
-                       static_cast<unsigned char>(bytes[i + 2]);
-    out += {table[(v >> 18) & 63], table[(v >> 12) & 63], table[(v >> 6) & 63], table[v & 63]};
-  }
-  if (i < bytes.size()) {
-    unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
-    out += {table[(v >> 18) & 63], table[(v >> 12) & 63], i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=', '='};
-  }
+  for (char c : name) out += c == '_' ? std::string("_<wbr>") : std::string(1, c);
   return out;
 }
 
-struct Series {
-  std::string name;
-  std::vector<std::pair<double, double>> points;
-};
-
-// An inline SVG line chart (log y optional).
-std::string svg_chart(const std::string& title, const std::string& y_label, const std::vector<Series>& series,
-                      bool log_y) {
-  const int w = 640, h = 300, left = 70, right = w - 200, top = 30, bottom = h - 40;
-  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
-  auto fy = [&](double y) { return log_y ? std::log10(y) : y; };
-  for (const Series& s : series)
-    for (auto [x, y] : s.points) {
-      if (log_y && !(y > 0)) continue;
-      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, fy(y)), y1 = std::max(y1, fy(y));
-    }
-  if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  if (x1 == x0) x0 -= 1, x1 += 1;
-  if (y1 == y0) y0 -= 1, y1 += 1;
-  auto px = [&](double x) { return left + (x - x0) / (x1 - x0) * (right - left); };
-  auto py = [&](double y) { return bottom - (fy(y) - y0) / (y1 - y0) * (bottom - top); };
-  std::string svg = fmt::format(
-      "<svg class=\"chart\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" viewBox=\"0 0 {} {}\">"
-      "<text x=\"{}\" y=\"18\" class=\"t\">{}</text><line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" class=\"axis\"/>"
-      "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" class=\"axis\"/><text x=\"4\" y=\"{}\" class=\"l\">{}</text>",
-      w, h, w, h, left, escape(title), left, bottom, right, bottom, left, top, left, bottom, top - 6, escape(y_label));
-  for (const Series& s : series)
-    for (auto [x, y] : s.points) {
-      (void)y;
-      svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" class=\"l\" text-anchor=\"middle\">{:g}</text>", px(x), bottom + 16, x);
-    }
-  svg += fmt::format("<text x=\"4\" y=\"{:.1f}\" class=\"l\">{:.3g}</text><text x=\"4\" y=\"{:.1f}\" class=\"l\">{:.3g}</text>",
-                     py(log_y ? std::pow(10.0, y1) : y1) + 4, log_y ? std::pow(10.0, y1) : y1,
-                     py(log_y ? std::pow(10.0, y0) : y0), log_y ? std::pow(10.0, y0) : y0);
-  const char* colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000"};
-  for (std::size_t k = 0; k < series.size(); ++k) {
-    std::string pts;
-    for (auto [x, y] : series[k].points)
-      if (!log_y || y > 0) pts += fmt::format("{:.1f},{:.1f} ", px(x), py(y));
-    const char* c = colours[k % std::size(colours)];
-    svg += fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>", pts, c);
-    svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"10\" height=\"10\" fill=\"{}\"/><text x=\"{}\" y=\"{}\" class=\"l\">{}</text>",
-                       right + 12, top + 16 * static_cast<int>(k), c, right + 26, top + 9 + 16 * static_cast<int>(k),
-                       escape(series[k].name));
-  }
-  return svg + "</svg>";
+std::string number(const nlohmann::json& v) {
+  if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+  if (v.is_number_float()) return fmt::format("{:.6g}", v.get<double>());
+  return escape(v.dump());
 }
+
+// The values a column takes over the rows, in order: "4, 6, 8" or "4–16 (13 widths)".
+std::string values_of(const nlohmann::json& rows, const char* column) {
+  std::vector<double> values;
+  for (const nlohmann::json& r : rows) {
+    const double v = r.at(column).get<double>();
+    if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
+  }
+  std::sort(values.begin(), values.end());
+  std::string out;
+  for (double v : values) out += fmt::format("{}{:g}", out.empty() ? "" : ", ", v);
+  return out;
+}
+
+std::string sweep_table(const nlohmann::json& sweep, const nlohmann::json& rows) {
+  const int filter = sweep.at("filter").get<int>();
+  const bool bias_default = sweep.at("bias_8bit_steps").empty();
+  const bool map_default = sweep.at("map_sizes").empty();
+  const std::pair<std::string, std::string> entries[] = {
+      {"program", sweep.at("program").get<std::string>() +
+                      (filter > 1 ? fmt::format(", footprint {}×{}", filter, filter) : std::string())},
+      {"scene", fmt::format("{}, camera image {}×{} pixels", sweep.at("scene").get<std::string>(),
+                            sweep.at("width").get<int>(), sweep.at("height").get<int>())},
+      {"machine profile", sweep.at("profile").get<std::string>()},
+      {"colour widths (bits per channel)", values_of(rows, "color_bits")},
+      {"depth widths (bits)", values_of(rows, "depth_bits")},
+      {"depth bias (8-bit steps of depth)",
+       values_of(rows, "bias_8bit_steps") + (bias_default ? " (not swept: the program's default)" : "")},
+      {"shadow-map size (texels per side)", values_of(rows, "map_size") + (map_default ? " (the scene's)" : "")},
+      {"depths per map cell (mdsm)", std::to_string(sweep.at("depths").get<int>())},
+      {"jitter seed (pcf)", std::to_string(sweep.at("seed").get<std::uint32_t>())},
+      {"points", fmt::format("{} (every combination of the values above)", rows.size())},
+      {"sweep id", sweep.at("id").get<std::string>()}};
+  std::string html = "<table class=\"sweep\">";
+  for (const auto& [name, value] : entries)
+    html += fmt::format("<tr><th>{}</th><td>{}</td></tr>", escape(name), escape(value));
+  return html + "</table>";
+}
+
+std::string rows_table(const nlohmann::json& rows) {
+  std::string html = "<table class=\"rows\"><tr>";
+  for (const Column& c : kColumns)
+    html += fmt::format("<th>{}<br><span class=\"unit\">{}</span></th>", breakable(c.name), c.unit);
+  html += "</tr>";
+  for (const nlohmann::json& r : rows) {
+    html += "<tr>";
+    for (const Column& c : kColumns) html += "<td>" + number(r.at(c.name)) + "</td>";
+    html += "</tr>";
+  }
+  return html + "</table>";
+}
+
+// The program of the study on each modelled machine, at that machine's own colour width.
+std::string cost_section(const nlohmann::json& sweep, const std::vector<std::string>& profiles) {
+  std::string html =
+      "<h2 id=\"cost\">Cost on the modelled machines</h2><p>The study's program on each machine at that machine's "
+      "own colour width (docs/cost-model.md): each pass's time is its slowest stage plus a fixed overhead.</p>";
+  for (const std::string& name : profiles) {
+    const MachineProfile& p = timed_profile(name);
+    ProgramOptions o;
+    o.program = sweep.at("program").get<std::string>();
+    o.filter = sweep.at("filter").get<int>();
+    o.depths = sweep.at("depths").get<int>();
+    o.scene = sweep.at("scene").get<std::string>();
+    o.width = sweep.at("width").get<int>();
+    o.height = sweep.at("height").get<int>();
+    o.profile = p.name;
+    o.color_bits = p.color_bits[0];
+    try {
+      ProgramSession session(o);
+      session.frame();
+      const FrameCost f = frame_cost(session.run().result.context->passes(), p);
+      html += fmt::format("<h3>{} at {} bits: {:.2f} frames per second ({:.2f} ms a frame)</h3>", escape(p.name),
+                          o.color_bits, f.fps(), 1e3 * f.seconds);
+      html += "<table class=\"cost\"><tr><th>pass</th><th>bound by</th><th>time (ms)</th></tr>";
+      for (const PassCost& pc : f.passes)
+        html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.3f}</td></tr>", escape(pc.label),
+                            pc.idle ? "-" : cost_stage_name(pc.bound), 1e3 * pc.total);
+      html += "</table>";
+    } catch (const ProgramError& e) {  // e.g. a width or filter beyond the machine's limits
+      html += fmt::format("<h3>{} at {} bits</h3><p>Cannot run there: {}</p>", escape(p.name), o.color_bits,
+                          escape(e.what()));
+    }
+  }
+  return html;
+}
+
+// The cost model against the paper's six published frame rates, each also predicted held out.
+std::string paper_section(const MachineProfile& vpro) {
+  const std::vector<PaperPrediction> rows = paper_predictions(vpro, published_runs(vpro));
+  std::string html = fmt::format(
+      "<h2 id=\"paper\">The cost model against the paper</h2><p>Brabec &amp; Seidel §5 publish six frame rates on "
+      "the Octane VPro/8. <em>Profile</em>: {}'s rates, whose free rates were fitted to the four of Figure 7. "
+      "<em>Held out</em>: the free rates fitted to the other five published rates only, then this one predicted "
+      "(leave-one-out). The two Figure 8 rows with the profile's rates are the held-out check of that fit. Miss: "
+      "how far outside the published range.</p><table class=\"paper\"><tr><th>published frame rate</th>"
+      "<th>published (fps)</th><th>profile (fps)</th><th>miss</th><th>held out (fps)</th><th>miss</th></tr>",
+      escape(vpro.name));
+  for (const PaperPrediction& p : rows) {
+    const PublishedFrameRate& r = p.published;
+    html += fmt::format("<tr><td>{}</td><td>{:g}–{:g}</td><td>{:.2f}</td><td>{:+.0f} %</td><td>{:.2f}</td>"
+                        "<td>{:+.0f} %</td></tr>",
+                        escape(r.what), r.low, r.high, p.with_profile, 100.0 * range_miss(p.with_profile, r.low, r.high),
+                        p.held_out, 100.0 * range_miss(p.held_out, r.low, r.high));
+  }
+  return html + "</table>";
+}
+
+const char* kStyle =
+    "body{font-family:sans-serif;margin:1.5em auto;max-width:1150px;padding:0 1em;color:#222;line-height:1.4}"
+    "table{border-collapse:collapse;margin:0.8em 0;font-size:13px}"
+    "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right;vertical-align:top}th{background:#f4f4f4}"
+    "table.sweep th,table.sweep td,table.cost td:first-child,table.paper td:first-child{text-align:left}"
+    "table.rows{width:100%;table-layout:fixed;font-size:11px}table.rows th{font-weight:normal;overflow-wrap:anywhere}"
+    ".unit{color:#666;font-size:10px}figure{margin:1em 0}figcaption{color:#444;font-size:13px}"
+    "svg.chart,svg.picture{max-width:100%;height:auto}p.claim{font-size:17px;font-weight:bold}"
+    "p.explanation{max-width:60em}";
 
 }  // namespace
 
 int html_report_command(const std::string& study_dir, const std::string& out_file,
-                        const std::vector<std::string>& cost_profiles) {
+                        const std::vector<std::string>& cost_profiles, bool quiet) {
   try {
     const fs::path dir(study_dir);
-    std::ifstream in(dir / "study.json");
-    if (!in) throw std::runtime_error(fmt::format("cannot read {}", (dir / "study.json").string()));
     nlohmann::json study;
     try {
-      study = nlohmann::json::parse(in);
-    } catch (const std::exception& e) {
+      study = nlohmann::json::parse(read_file(dir / "study.json"));
+    } catch (const nlohmann::json::exception& e) {
       throw std::runtime_error(fmt::format("{}: not valid JSON: {}", (dir / "study.json").string(), e.what()));
     }
+    for (const std::string& name : cost_profiles) timed_profile(name);  // refused before any work
     const nlohmann::json& sweep = study.at("sweep");
     const nlohmann::json& rows = study.at("rows");
-    const std::string what = fmt::format("{} {}x{} on {}", sweep.at("program").get<std::string>(),
-                                         sweep.at("filter").get<int>(), sweep.at("filter").get<int>(),
-                                         sweep.at("scene").get<std::string>());
-    std::string html = "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>passim: " + escape(what) +
-                       "</title><style>body{font-family:sans-serif;margin:2em;color:#222}table{border-collapse:collapse;"
-                       "margin:1em 0}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}th{background:#f4f4f4}"
-                       ".chart{margin:0.5em 1em 0.5em 0}.axis{stroke:#333}.t{font-size:14px}.l{font-size:11px}"
-                       "img{max-width:100%}</style></head><body>";
-    html += "<h1>passim precision study: " + escape(what) + "</h1>";
-    html += "<p>Sweep <code>" + escape(sweep.at("id").get<std::string>()) + "</code>: " + escape(sweep.dump()) + "</p>";
-    // Charts: one series per combination of the non-bits settings.
-    auto chart = [&](const std::string& title, const std::string& y_label, bool log_y, auto&& value) {
-      std::vector<Series> series;
-      for (const nlohmann::json& r : rows) {
-        const std::string name = fmt::format("depth {}, bias {:g}, map {}", r.at("depth_bits").get<int>(),
-                                             r.at("bias_8bit_steps").get<double>(), r.at("map_size").get<int>());
-        auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) { return s.name == name; });
-        if (it == series.end()) it = series.insert(series.end(), Series{name, {}});
-        it->points.emplace_back(r.at("color_bits").get<double>(), value(r));
-      }
-      return svg_chart(title, y_label, series, log_y);
+    const bool with_paper = std::find(cost_profiles.begin(), cost_profiles.end(), "octane-vpro8") != cost_profiles.end();
+    Progress progress("passim report html", 2 + (cost_profiles.empty() ? 0 : 1) + (with_paper ? 1 : 0), quiet, "steps");
+    int step = 0;
+    progress.step(step, "the figures");
+    // The figures: the same code as the study's files (python/passim/figures.py), as SVG.
+    const TempDir figures;
+    const FigureRun drawn = draw_figures({"study", dir.string(), "--out", figures.path.string(), "--formats", "svg"});
+    if (!drawn.ok) throw std::runtime_error("the figures could not be drawn: " + drawn.message);
+    progress.step(++step);
+    auto figure = [&](const char* name, const std::string& caption, const char* css = "chart") {
+      const fs::path file = figures.path / (std::string(name) + ".svg");
+      if (!fs::exists(file)) return std::string();
+      return fmt::format("<figure id=\"{}\">{}<figcaption>{}</figcaption></figure>", name, inline_svg(file, css),
+                         caption);
     };
-    html += "<h2>Against the colour width</h2><div>";
-    html += chart("mean absolute attenuation error", "error", true,
-                  [](const nlohmann::json& r) { return r.at("mean_abs_error").get<double>(); });
-    html += chart("precision (bits)", "bits", false, [](const nlohmann::json& r) { return r.at("precision_bits").get<double>(); });
-    html += chart("shadow levels", "levels", false, [](const nlohmann::json& r) { return r.at("levels").get<double>(); });
-    html += chart("misclassified pixels (against the reference)", "pixels", false, [](const nlohmann::json& r) {
-      return r.at("lit_but_shadowed").get<double>() + r.at("shadowed_but_lit").get<double>();
-    });
-    html += chart("self-shadowed pixels (against the reference)", "pixels", false,
-                  [](const nlohmann::json& r) { return r.at("self_shadowed").get<double>(); });
-    html += "</div><h2>Table</h2><table><tr>";
-    const char* columns[] = {"color_bits", "depth_bits", "map_size", "bias_8bit_steps", "levels", "mean_abs_error",
-                             "max_abs_error", "precision_bits", "lit_but_shadowed", "shadowed_but_lit", "self_shadowed",
-                             "exact_lit_but_shadowed", "exact_self_shadowed", "depth_step_world"};
-    for (const char* c : columns) html += std::string("<th>") + c + "</th>";
-    html += "</tr>";
-    for (const nlohmann::json& r : rows) {
-      html += "<tr>";
-      for (const char* c : columns) {
-        const nlohmann::json& v = r.at(c);
-        html += "<td>" + (v.is_number_float() ? fmt::format("{:.6g}", v.get<double>()) : v.dump()) + "</td>";
-      }
-      html += "</tr>";
+    const std::string what = fmt::format("{}{} on {}", sweep.at("program").get<std::string>(),
+                                         sweep.at("filter").get<int>() > 1
+                                             ? fmt::format(" {}×{}", sweep.at("filter").get<int>(), sweep.at("filter").get<int>())
+                                             : std::string(),
+                                         sweep.at("scene").get<std::string>());
+    std::string html = "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><meta name=\"viewport\" "
+                       "content=\"width=device-width\"><title>passim: " + escape(what) + "</title><style>" + kStyle +
+                       "</style></head><body>";
+    html += "<h1>passim precision study: " + escape(what) + "</h1>";
+    // The headline first: the 8-vs-12-bit claim as this sweep measures it.
+    const nlohmann::json headline = study.value("headline", nlohmann::json());
+    html += "<h2 id=\"headline\">8 against 12 bits</h2>";
+    if (!headline.is_null()) {
+      html += "<p class=\"claim\">" + escape(headline.at("statement").get<std::string>()) + "</p>";
+      html += "<p class=\"explanation\">" + escape(headline.at("explanation").get<std::string>()) + "</p>";
+      html += figure("8_vs_12_bits",
+                     "Misclassified pixels (against the program's algorithm in double precision), light leaks "
+                     "(shadowed pixels left lit, against the exact shadow test) and self-shadowing (lit surfaces "
+                     "facing the light that are shadowed, against the exact test), against the bias, at 8 and 12 "
+                     "bits.");
+    } else {
+      html += "<p>This sweep has no point at 8 bits beside one at 12 with the same other settings, so it cannot "
+              "state the 8-against-12-bit claim: sweep <code>--bits 8,12</code> (and <code>--bias</code>) for it.</p>";
     }
-    html += "</table>";
-    const fs::path strip = dir / "edge_strip.png";
-    if (fs::exists(strip)) {
-      std::ifstream png(strip, std::ios::binary);
-      const std::string bytes((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>());
-      html += "<h2>One shadow edge per width (magnified 4×)</h2><img alt=\"edge strip\" src=\"data:image/png;base64," +
-              base64(bytes) + "\">";
-    }
-    // The cost of the program at the sweep's first width on each timed profile.
+    html += "<h2 id=\"sweep\">The sweep</h2>" + sweep_table(sweep, rows);
+    html += "<h2 id=\"figures\">Against the colour width</h2>";
+    html += figure("error_vs_bits", "Mean absolute attenuation error against the algorithm in double precision.");
+    html += figure("precision_vs_bits", "Precision: −log₂ of the relative RMS error (64: no error).");
+    html += figure("levels_vs_bits", "Distinct values of the attenuation image, values one code apart as one.");
+    html += figure("misclassified_vs_bits", "Pixels lit by the reference and attenuated, or the reverse.");
+    html += figure("light_leaks_vs_bits", "Pixels the exact shadow test shadows that the program leaves lit.");
+    html += figure("self_shadowing_vs_bits", "Lit surfaces facing the light that the program shadows (acne).");
+    html += figure("self_shadowing_vs_bias", "Self-shadowing against the bias, one series per width.");
+    html += "<h2 id=\"rows\">Every point</h2>" + rows_table(rows) +
+            "<p>docs/studies.md defines every column; the same rows are in study.csv and study.json.</p>";
+    html += figure("edge_strip", "One shadow edge per point: Figure 7's inset region, each pixel 4×4.", "picture");
     if (!cost_profiles.empty()) {
-      ProgramOptions o;
-      o.program = sweep.at("program").get<std::string>();
-      o.filter = sweep.at("filter").get<int>();
-      o.depths = sweep.at("depths").get<int>();
-      o.scene = sweep.at("scene").get<std::string>();
-      o.width = sweep.at("width").get<int>();
-      o.height = sweep.at("height").get<int>();
-      o.color_bits = sweep.at("color_bits").at(0).get<int>();
-      ProgramSession session(o);
-      session.frame();
-      const ProgramRun& run = session.run();
-      html += fmt::format("<h2>Cost at {} bits</h2>", o.color_bits);
-      for (const std::string& name : cost_profiles) {
-        const MachineProfile* p = find_profile(name);
-        if (!p || p->rates.triangles <= 0.0) throw std::runtime_error(fmt::format("profile '{}' has no cost rates", name));
-        const FrameCost f = frame_cost(run.result.context->passes(), *p);
-        html += fmt::format("<h3>{}: {:.2f} frames per second</h3><table><tr><th>pass</th><th>bound by</th><th>ms</th></tr>",
-                            escape(p->name), f.fps());
-        for (const PassCost& pc : f.passes)
-          html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.3f}</td></tr>", escape(pc.label),
-                              pc.idle ? "-" : cost_stage_name(pc.bound), 1e3 * pc.total);
-        html += "</table>";
-      }
+      progress.step(step, "the cost of the program on each machine");
+      html += cost_section(sweep, cost_profiles);
+      progress.step(++step);
     }
-    html += "<p>docs/studies.md defines every column; docs/cost-model.md the cost model.</p></body></html>\n";
+    if (with_paper) {
+      progress.step(step, "the cost model against the paper's frame rates");
+      html += paper_section(timed_profile("octane-vpro8"));
+      progress.step(++step);
+    }
+    progress.step(++step);
+    progress.finish();
+    html += "<p>docs/cost-model.md describes the cost model, its rates and their sources.</p></body></html>\n";
     const fs::path out = out_file.empty() ? dir / "report.html" : fs::path(out_file);
     write_text_file(out, html);
     std::cout << "wrote " << out.string() << "\n";

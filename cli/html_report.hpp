@@ -7,6 +7,6 @@
 namespace passim {
 
 int html_report_command(const std::string& study_dir, const std::string& out_file,
-                        const std::vector<std::string>& cost_profiles);
+                        const std::vector<std::string>& cost_profiles, bool quiet = false);
 
 }  // namespace passim

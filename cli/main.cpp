@@ -9,27 +9,32 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <optional>
 #include <sstream>
+#include <streambuf>
 
 #include "pipeline/allocator.hpp"
 #include "trace_io/apitrace_replay.hpp"
 #include "pipeline/calls.hpp"
 #include "reports/image_io.hpp"
 #include "pipeline/profile.hpp"
+#include "reports/program_report.hpp"
 #include "reports/report.hpp"
 #include "trace_io/trace.hpp"
 #include "cli/apitrace_command.hpp"
 #include "cli/args.hpp"
 #include "cli/cross_check_command.hpp"
 #include "cli/cost_command.hpp"
+#include "cli/figures.hpp"
 #include "cli/html_report.hpp"
+#include "cli/progress.hpp"
 #include "cli/study_command.hpp"
-#include "programs/figure.hpp"
 #include "programs/programs.hpp"
 #include "programs/reference.hpp"
 
@@ -61,6 +66,42 @@ struct RunCommand {
   bool reference = false, cross_check = false;
 };
 
+// The replay's progress, from the re-recording the replay offers (ReplayOptions::record): the
+// calls replayed come out as canonical text about as long as the trace's own, so the bytes
+// written, against the trace's size, say how far it is (a call with a large array weighs what
+// its text weighs). They are handed on to `forward` (the --record text), or dropped.
+class ReplayMeter : public std::streambuf {
+ public:
+  ReplayMeter(std::streambuf* forward, Progress& progress, std::uintmax_t total)
+      : forward_(forward), progress_(progress), total_(std::max<std::uintmax_t>(1, total)) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (c == traits_type::eof()) return c;
+    count(1);
+    return forward_ ? forward_->sputc(static_cast<char>(c)) : c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    count(static_cast<std::uintmax_t>(n));
+    return forward_ ? forward_->sputn(s, n) : n;
+  }
+
+ private:
+  void count(std::uintmax_t n) {
+    bytes_ += n;
+    if (bytes_ >= next_) {
+      progress_.step(static_cast<int>(std::min<std::uintmax_t>(99, 100 * bytes_ / total_)));
+      next_ = bytes_ + total_ / 200 + 1;
+    }
+  }
+  std::streambuf* forward_;
+  Progress& progress_;
+  std::uintmax_t total_, bytes_ = 0, next_ = 0;
+};
+
+// A trace this large shows its progress (re-recording it costs about a quarter more time).
+constexpr std::uintmax_t kLongTraceBytes = 8u << 20;
+
 int run_command(const RunCommand& c) {
   const fs::path& trace = c.trace;
   const fs::path& out = c.out;
@@ -68,13 +109,19 @@ int run_command(const RunCommand& c) {
   const std::string& expect = c.expect;
   const std::string& record = c.record;
   std::ostringstream recorded;
-  TraceWriter writer(recorded);
+  std::error_code size_error;
+  const std::uintmax_t size = fs::file_size(trace, size_error);
+  const bool watch = !quiet && !size_error && size >= kLongTraceBytes;
+  Progress progress(fmt::format("passim run {}", trace.filename().string()), 100, !watch, "%");
+  ReplayMeter meter(record.empty() ? nullptr : recorded.rdbuf(), progress, size);
+  std::ostream metered(&meter);
+  TraceWriter writer(watch ? metered : recorded);
   ReplayOptions options;
   options.strict = c.strict;
   options.diagnostics = &std::cerr;
   options.max_memory = c.max_memory;
   options.allow_files = c.allow_files;
-  if (!record.empty()) options.record = &writer;
+  if (!record.empty() || watch) options.record = &writer;
   RunOutput result;
   try {
     if (c.cross_check) {
@@ -89,6 +136,7 @@ int run_command(const RunCommand& c) {
     std::optional<ScopedKernelPaths> reference;
     if (c.reference) reference.emplace(KernelPaths::reference());
     result = run_trace_to_dir(trace, out, options, c.tiff);
+    progress.finish();
     if (!record.empty()) write_text_file(record, recorded.str());
   } catch (const TraceError& e) {
     std::cerr << "passim: " << e.what() << "\n";
@@ -141,16 +189,7 @@ std::vector<fs::path> write_program_outputs(const ProgramRun& run, const fs::pat
     files.push_back(write_image(img, out, tiff));
     names.push_back(files.back().filename().string());
   }
-  nlohmann::json report = run_report(run.result, "trace.pass", names);
-  const ProgramOptions& o = run.options;
-  report["program"] = {{"name", o.program},
-                       {"scene", run.scene.name},
-                       {"triangles", run.triangles},
-                       {"map_size", run.map_size},
-                       {"filter", o.filter},
-                       {"depths", o.depths},
-                       {"bias_steps", o.bias},
-                       {"levels", count_levels(run.image("attenuation"))}};
+  const nlohmann::json report = program_report(run, names);
   write_text_file(out / "counters.json", report.dump(2) + "\n");
   files.push_back(out / "counters.json");
   write_text_file(out / "trace.pass", run.trace);
@@ -188,18 +227,7 @@ int program_command(ProgramCommand& c) {
       fs::create_directories(c.out);
       const fs::path image = write_image(ref.image, c.out, c.tiff);
       const int levels = count_levels(ref.image);
-      const nlohmann::json j = {{"reference", ref.options.program},
-                                {"scene", ref.scene.name},
-                                {"triangles", ref.scene.triangles()},
-                                {"map_size", ref.map_size},
-                                {"filter", ref.options.filter},
-                                {"depths", ref.options.depths},
-                                {"sampling", ref.options.sampling},
-                                {"seed", ref.options.seed},
-                                {"bias_steps", ref.options.bias},
-                                {"bias_depth", ref.bias_depth},
-                                {"levels", levels},
-                                {"images", {{{"name", "attenuation"}, {"file", image.filename().string()}, {"hash", ref.image.hash}}}}};
+      const nlohmann::json j = reference_report(ref, image.filename().string());
       write_text_file(fs::path(c.out) / "reference.json", j.dump(2) + "\n");
       if (!c.quiet)
         std::cout << fmt::format("{} on {} (double precision, no pipeline) -> {}\n  wrote {}\n  wrote {}\n"
@@ -292,8 +320,9 @@ int info_command(bool calls) {
 }
 
 // The main job: Figure 7's four variants (shadow map, PCF 2x2, fast PCF 2x2, fast PCF
-// 4x4) at 8 and 12 bits on the paper scene; a side-by-side figure and a table.
-int demo_command(const fs::path& out, const std::string& scene) {
+// 4x4) at 8 and 12 bits on the paper scene; a side-by-side figure with its panels labelled
+// (matplotlib, cli/figures.hpp) and a table.
+int demo_command(const fs::path& out, const std::string& scene, bool quiet) {
   struct Variant {
     const char* label;
     const char* program;
@@ -303,25 +332,30 @@ int demo_command(const fs::path& out, const std::string& scene) {
                               {"PCF 2x2", "pcf", 2},
                               {"fast PCF 2x2", "fast-pcf", 2},
                               {"fast PCF 4x4", "fast-pcf", 4}};
-  std::vector<ProgramRun> runs;
-  std::vector<std::vector<FigureColumn>> rows;
   std::string table =
       "| variant | bits | passes | shadow-map passes | levels | fragments | pixels copied | accumulation ops | "
       "time (s) |\n|---|---|---|---|---|---|---|---|---|\n";
+  // The inset: the shadow edge of the large sphere on the ground, as Figure 7's red box
+  // (window coordinates, row 0 at the bottom).
+  const int inset_x = 250, inset_y = 210, inset_w = 100, inset_h = 75;
+  nlohmann::json panels = nlohmann::json::array();
+  std::string scene_name;
+  int triangles = 0;
   try {
     fs::create_directories(out);
+    Progress progress("passim demo", 8, quiet, "runs");
+    int done = 0;
     for (int bits : {8, 12}) {
-      rows.emplace_back();
       for (const Variant& v : variants) {
+        progress.step(done, fmt::format("{}, {} bits", v.label, bits));
         ProgramOptions o;
         o.program = v.program;
         o.filter = v.filter;
         o.color_bits = bits;
         o.scene = scene;
         const auto t0 = std::chrono::steady_clock::now();
-        runs.push_back(run_program(o));
+        const ProgramRun r = run_program(o);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const ProgramRun& r = runs.back();
         const fs::path dir = out / fmt::format("{}-{}x{}-{}bit", v.program, std::max(1, r.options.filter),
                                                std::max(1, r.options.filter), bits);
         write_program_outputs(r, dir, false);
@@ -336,22 +370,39 @@ int demo_command(const fs::path& out, const std::string& scene) {
         table += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {:.2f} |\n", v.label, bits, passes, map_passes,
                              levels, c.fragments_generated, c.pixels_drawn + c.pixels_read,
                              c.accum_load_pixels + c.accum_accum_pixels + c.accum_return_pixels, seconds);
-        std::cout << fmt::format("  {:<13} {:>2} bits: {:>2} passes, {:>2} shadow levels  -> {}\n", v.label, bits,
-                                 passes, levels, dir.string());
+        panels.push_back({{"variant", v.label}, {"bits", bits}, {"levels", levels},
+                          {"image", fs::absolute(dir / image_file_name(r.image("final"))).string()}});
+        scene_name = r.scene.name, triangles = r.triangles;
+        progress.step(++done);
+        if (!quiet) {
+          progress.finish();
+          std::cout << fmt::format("  {:<13} {:>2} bits: {:>2} passes, {:>2} shadow levels  -> {}\n", v.label, bits,
+                                   passes, levels, dir.string());
+        }
       }
     }
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      rows[k / 4].push_back({variants[k % 4].label, &runs[k].image("final")});
-    // The inset: the shadow edge of the large sphere on the ground, as Figure 7's red box.
-    write_figure(out / "figure7.png", rows, InsetRegion{250, 210, 100, 75});
     const std::string md = fmt::format(
         "# Figure 7 variants on the {} scene ({} triangles, 800x600, 512² map)\n\n"
-        "Rows of figure7.png: 8 bits (full image, magnified inset), then 12 bits.\n"
+        "Panels of figure7.png, labelled (a)-(h) as the paper's: 8 bits (each variant's image, the inset "
+        "magnified below it), then 12 bits.\n"
         "'levels' counts distinct values of the attenuation image, values one code apart as one level.\n\n{}",
-        runs.front().scene.name, runs.front().triangles, table);
+        scene_name, triangles, table);
     write_text_file(out / "figure7.md", md);
-    std::cout << "\n" << md << "\nWrote " << (out / "figure7.png").string() << " and "
-              << (out / "figure7.md").string() << "; each run's images, counters.json and trace.pass are beside them.\n";
+    const nlohmann::json manifest{
+        {"title", fmt::format("Figure 7 of Brabec & Seidel on the {} scene: 8 bits (a-d), 12 bits (e-h)", scene_name)},
+        {"inset", {{"x", inset_x}, {"y", inset_y}, {"width", inset_w}, {"height", inset_h}}},
+        {"panels", panels}};
+    write_text_file(out / "figure7.json", manifest.dump(1) + "\n");
+    const FigureRun figure = draw_figures({"figure7", (out / "figure7.json").string(), (out / "figure7.png").string()});
+    if (!quiet) std::cout << "\n" << md << "\n";
+    if (!figure.ok) {
+      std::cerr << "passim demo: figure7.png was not drawn: " << figure.message << "\n";
+      if (!quiet) std::cout << "Wrote " << (out / "figure7.md").string() << "; each run's images, counters.json and trace.pass are beside it.\n";
+      return kRunError;
+    }
+    if (!quiet)
+      std::cout << "Wrote " << (out / "figure7.png").string() << " and " << (out / "figure7.md").string()
+                << "; each run's images, counters.json and trace.pass are beside them.\n";
   } catch (const std::exception& e) {
     std::cerr << "passim: " << e.what() << "\n";
     return kRunError;
@@ -360,6 +411,16 @@ int demo_command(const fs::path& out, const std::string& scene) {
 }
 
 }  // namespace
+
+// One rule for --bits everywhere (README, "Running the papers' programs"): a program runs at the
+// colour width of the machine profile it runs on unless --bits says otherwise — 8 bits on
+// `ideal`, 12 on `octane-vpro8`. Commands that time a program run it on the machine they time
+// (report cost, study what-if), so the width is that machine's.
+constexpr const char* kBitsHelp = "Colour width per channel, 4-16 (default: the profile's, 8 on ideal, 12 on octane-vpro8)";
+void default_bits(CLI::App* command, ProgramOptions& o) {
+  if (command->count("--bits") > 0) return;
+  if (const MachineProfile* p = find_profile(o.profile)) o.color_bits = p->color_bits[0];
+}
 
 int dispatch(int argc, char** argv) {
   CLI::App app{"passim: a bit-accurate model of the OpenGL 1.2 + imaging pipeline, for multipass algorithms"};
@@ -437,13 +498,15 @@ int dispatch(int argc, char** argv) {
   std::string demo_out = "out", demo_scene = "paper";
   demo->add_option("--out,-o", demo_out, "Output directory")->capture_default_str();
   demo->add_option("--scene", demo_scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
+  bool demo_quiet = false;
+  demo->add_flag("--quiet,-q", demo_quiet, "Print nothing but errors");
 
   auto* program = app.add_subcommand("program", "Run one of the papers' pass programs (passim program --list)");
   ProgramCommand pc;
   program->add_option("name", pc.options.program,
                       "Program: shadow-map, pcf, fast-pcf, mdsm, hw-shadow; references: reeves, shader-pcf, mdsm-ref");
   program->add_flag("--list", pc.list, "Describe each program with its paper section");
-  program->add_option("--bits", pc.options.color_bits, "Colour width per channel, 4-16")->capture_default_str();
+  program->add_option("--bits", pc.options.color_bits, kBitsHelp);
   program->add_option("--depth-bits", pc.options.depth_bits, "Depth-buffer width")->capture_default_str();
   program->add_option("--accum-bits", pc.options.accum_bits, "Accumulation width (0: twice the colour width)")
       ->capture_default_str();
@@ -485,7 +548,8 @@ int dispatch(int argc, char** argv) {
   cost->add_option("--filter", cost_filter, "The program's footprint NxN");
   cost->add_option("--scene", cc.program.scene, "The program's scene")->capture_default_str();
   cost->add_option("--map", cc.program.map_size, "The program's shadow-map size");
-  cost->add_option("--bits", cc.program.color_bits, "Colour width (default: the profile's)");
+  cost->add_option("--depths", cc.program.depths, "mdsm: the program's depths per map cell, 1-3")->capture_default_str();
+  cost->add_option("--bits", cc.program.color_bits, "Colour width (default: each profile's own)");
   cost->add_option("--profile", cost_profiles, "Machine profiles, comma-separated")->capture_default_str();
   cost->add_flag("--csv", cost_csv, "CSV on stdout");
   cost->add_flag("--json", cost_json, "JSON on stdout");
@@ -498,6 +562,8 @@ int dispatch(int argc, char** argv) {
   html->add_option("--out,-o", html_out, "The page (default: STUDY/report.html)");
   html->add_option("--cost", html_cost, "Timed profiles for the cost tables, comma-separated ('' for none)")
       ->capture_default_str();
+  bool html_quiet = false;
+  html->add_flag("--quiet,-q", html_quiet, "No progress line");
   auto* study = app.add_subcommand("study", "Precision studies (docs/studies.md)");
   study->require_subcommand(1);
   auto* precision = study->add_subcommand("precision", "A program over a sweep of widths, measured against its double-precision reference");
@@ -507,7 +573,8 @@ int dispatch(int argc, char** argv) {
   precision->add_option("--depths", sc.base.depths, "mdsm: depths per cell")->capture_default_str();
   precision->add_option("--scene", sc.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
   precision->add_option("--profile", sc.base.profile, "Machine profile")->capture_default_str();
-  precision->add_option("--bits", sc.bits, "Colour widths: a list of values and ranges")->capture_default_str();
+  precision->add_option("--bits", sc.bits, "Colour widths swept: a list of values and ranges")->capture_default_str();
+  precision->add_option("--figures", sc.figures, "The figures' formats (png, svg, pdf), or none")->capture_default_str();
   precision->add_option("--depth-bits", sc.depth_bits, "Depth widths (default 24)");
   precision->add_option("--bias", sc.biases, "Biases in 8-bit steps of depth, e.g. 0,0.5,1 (default: the program's)");
   precision->add_option("--map", sc.maps, "Shadow-map sizes (default: the scene's)");
@@ -534,18 +601,22 @@ int dispatch(int argc, char** argv) {
       "provenance", "Which stage first loses information: the run, then one stage at a time widened to its widest");
   StudyCommand pvc;
   pvc.size = "800x600";
+  pvc.out = "";
   provenance->add_option("--program", pvc.base.program, "The program (passim program --list)")->required();
   provenance->add_option("--filter", pvc.filter, "Its footprint NxN");
   provenance->add_option("--depths", pvc.base.depths, "mdsm: depths per cell")->capture_default_str();
   provenance->add_option("--scene", pvc.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
   provenance->add_option("--size", pvc.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
-  provenance->add_option("--bits", pvc.base.color_bits, "Colour width")->capture_default_str();
+  provenance->add_option("--bits", pvc.base.color_bits, kBitsHelp);
   provenance->add_option("--texture-bits", pvc.base.texture_bits, "Texture internal formats: 4, 8, 12, 16 (0: as the colour)")
       ->capture_default_str();
   provenance->add_option("--table-bits", pvc.base.table_bits, "Colour table format: 4, 8, 12, 16 (0: as the colour)")
       ->capture_default_str();
   provenance->add_option("--accum-bits", pvc.base.accum_bits, "Accumulation width (0: the default)")->capture_default_str();
   provenance->add_option("--profile", pvc.base.profile, "Machine profile")->capture_default_str();
+  provenance->add_flag("--json", pvc.json, "The runs as JSON on stdout, with the statement 'widening X recovers N bits'");
+  provenance->add_option("--out,-o", pvc.out, "Also write the JSON document to this file");
+  provenance->add_flag("--quiet,-q", pvc.quiet, "No progress line");
   auto* what_if = study->add_subcommand("what-if", "A program as given against the same with settings changed: image and cost");
   StudyCommand wic;
   what_if->add_option("--program", wic.base.program, "The program (passim program --list)")->required();
@@ -556,10 +627,11 @@ int dispatch(int argc, char** argv) {
   what_if->add_option("--depths", wic.base.depths, "mdsm: depths per cell")->capture_default_str();
   what_if->add_option("--scene", wic.base.scene, "paper, fig8, edges or FILE.obj")->capture_default_str();
   what_if->add_option("--size", wic.size, "Camera image WIDTHxHEIGHT")->capture_default_str();
-  what_if->add_option("--bits", wic.base.color_bits, "Colour width")->capture_default_str();
+  what_if->add_option("--bits", wic.base.color_bits, kBitsHelp);
   what_if->add_option("--texture-bits", wic.base.texture_bits, "Texture formats (0: as the colour)")->capture_default_str();
-  what_if->add_option("--profile", wic.base.profile, "Machine profile the program runs on")->capture_default_str();
+  what_if->add_option("--profile", wic.base.profile, "Machine profile the program runs on (default: the --cost one)");
   what_if->add_option("--cost", wic.cost_profile, "Machine profile the cost is estimated on")->capture_default_str();
+  what_if->add_flag("--quiet,-q", wic.quiet, "No progress line");
   auto* status = study->add_subcommand("status", "Where a --slurm study stands: points and shards done, running, failed, missing");
   std::string status_dir;
   bool status_json = false;
@@ -573,6 +645,8 @@ int dispatch(int argc, char** argv) {
   std::string merge_out = "study";
   merge->add_option("dirs", merge_dirs, "The slices' output directories")->required();
   merge->add_option("--out,-o", merge_out, "Output directory")->capture_default_str();
+  std::string merge_figures = "png,svg,pdf";
+  merge->add_option("--figures", merge_figures, "The figures' formats (png, svg, pdf), or none")->capture_default_str();
 
   try {
     app.parse(argc, argv);
@@ -619,11 +693,18 @@ int dispatch(int argc, char** argv) {
   if (*info) return info_command(calls);
   if (*precision) return study_command(sc);
   if (*html) {
-    return html_report_command(html_dir, html_out, parse_list(html_cost));
+    return html_report_command(html_dir, html_out, parse_list(html_cost), html_quiet);
   }
-  if (*provenance) return provenance_command(pvc);
-  if (*what_if) return what_if_command(wic);
-  if (*merge) return merge_command(merge_dirs, merge_out);
+  if (*provenance) {
+    default_bits(provenance, pvc.base);
+    return provenance_command(pvc);
+  }
+  if (*what_if) {
+    if (what_if->count("--profile") == 0) wic.base.profile = wic.cost_profile;  // timed where it runs
+    default_bits(what_if, wic.base);
+    return what_if_command(wic);
+  }
+  if (*merge) return merge_command(merge_dirs, merge_out, merge_figures);
   if (*status) return study_status_command(status_dir, status_json);
   if (*resume) return study_resume_command(resume_dir);
   if (*cost) {
@@ -654,6 +735,7 @@ int dispatch(int argc, char** argv) {
       std::cerr << "passim program: name a program (passim program --list)\n";
       return kUsage;
     }
+    default_bits(program, pc.options);
     return program_command(pc);
   }
   if (*demo || app.get_subcommands().empty()) {
@@ -661,7 +743,7 @@ int dispatch(int argc, char** argv) {
       std::cout << app.help() << "\n";
       return kOk;
     }
-    return demo_command(demo_out, demo_scene);
+    return demo_command(demo_out, demo_scene, demo_quiet);
   }
   return kOk;
 }

@@ -2,10 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fcntl.h>
-#include <poll.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,11 +20,11 @@
 
 #include "reports/image_io.hpp"
 #include "cli/args.hpp"
+#include "cli/figures.hpp"
+#include "cli/progress.hpp"
+#include "cli/process.hpp"
 #include "reports/cost.hpp"
 #include "trace_io/trace.hpp"
-#include "programs/plot.hpp"
-
-extern char** environ;  // handed to the Slurm commands run_process starts
 
 namespace fs = std::filesystem;
 
@@ -76,85 +72,20 @@ std::vector<double> double_list(const std::string& text, const char* what) {
   return out;
 }
 
-// The plots (docs/studies.md): metrics against the colour width, one series per other
-// setting; self-shadowing against the bias, one series per width.
-void write_plots(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows) {
-  const std::string what = fmt::format("{} {}x{} on {}", sweep.at("program").get<std::string>(),
-                                       sweep.at("filter").get<int>(), sweep.at("filter").get<int>(),
-                                       sweep.at("scene").get<std::string>());
-  // A series per combination of the other settings, named by those that vary.
-  auto varies = [&](auto&& field) {
-    return std::any_of(rows.begin(), rows.end(), [&](const StudyRow& r) { return field(r) != field(rows.front()); });
-  };
-  const bool depth_varies = varies([](const StudyRow& r) { return static_cast<double>(r.depth_bits); });
-  const bool bias_varies = varies([](const StudyRow& r) { return r.bias_steps8; });
-  const bool map_varies = varies([](const StudyRow& r) { return static_cast<double>(r.map_size); });
-  auto group_name = [&](const StudyRow& r) {
-    std::string name;
-    if (depth_varies) name += fmt::format("depth {} ", r.depth_bits);
-    if (bias_varies) name += fmt::format("bias {:g} ", r.bias_steps8);
-    if (map_varies) name += fmt::format("map {} ", r.map_size);
-    return name.empty() ? std::string("all") : name.substr(0, name.size() - 1);
-  };
-  auto by_bits = [&](const std::string& title, const std::string& y_label, bool log_y, auto&& value,
-                     const std::string& file) {
-    PlotSpec plot{fmt::format("{}: {}", what, title), "colour bits", y_label, log_y, {}};
-    for (const StudyRow& r : rows) {
-      const std::string name = group_name(r);
-      auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const PlotSeries& p) { return p.name == name; });
-      if (it == plot.series.end()) it = plot.series.insert(plot.series.end(), PlotSeries{name, {}, {}});
-      it->x.push_back(r.color_bits);
-      it->y.push_back(value(r));
-    }
-    write_plot(out / file, plot);
-  };
-  by_bits("mean absolute attenuation error", "error", true, [](const StudyRow& r) { return r.mean_abs_error; },
-          "error_vs_bits.png");
-  by_bits("precision (−log2 relative RMS error)", "bits", false, [](const StudyRow& r) { return r.precision_bits; },
-          "precision_vs_bits.png");
-  by_bits("shadow levels", "levels", false, [](const StudyRow& r) { return static_cast<double>(r.levels); },
-          "levels_vs_bits.png");
-  by_bits("misclassified pixels against the reference (lit but shadowed + shadowed but lit)", "pixels", false,
-          [](const StudyRow& r) { return static_cast<double>(r.reference.lit_shadowed + r.reference.shadowed_lit); },
-          "misclassified_vs_bits.png");
-  by_bits("self-shadowed pixels against the reference", "pixels", false,
-          [](const StudyRow& r) { return static_cast<double>(r.reference.self_shadowed); },
-          "self_shadowing_vs_bits.png");
-  std::vector<double> biases;
-  for (const StudyRow& r : rows)
-    if (std::find(biases.begin(), biases.end(), r.bias_steps8) == biases.end()) biases.push_back(r.bias_steps8);
-  if (biases.size() > 1) {
-    PlotSpec plot{fmt::format("{}: self-shadowing (exact test) against the bias", what), "bias (8-bit steps of depth)",
-                  "self-shadowed pixels", false, {}};
-    for (const StudyRow& r : rows) {
-      std::string name = fmt::format("{} bits", r.color_bits);
-      if (depth_varies) name += fmt::format(", depth {}", r.depth_bits);
-      if (map_varies) name += fmt::format(", map {}", r.map_size);
-      auto it = std::find_if(plot.series.begin(), plot.series.end(), [&](const PlotSeries& p) { return p.name == name; });
-      if (it == plot.series.end()) it = plot.series.insert(plot.series.end(), PlotSeries{name, {}, {}});
-      it->x.push_back(r.bias_steps8);
-      it->y.push_back(r.exact.self_shadowed);  // acne against the true shadows (docs/studies.md)
-    }
-    write_plot(out / "self_shadowing_vs_bias.png", plot);
-  }
-}
-
+// The study's files: the edge images, study.csv, study.json and, for a whole sweep (a slice
+// draws nothing: passim merge does), the figures in `figures` formats ("none": none), drawn by
+// matplotlib (cli/figures.hpp). Figures that cannot be drawn (no python3 or matplotlib) leave the
+// tables in place and say why.
 void write_outputs(const fs::path& out, const nlohmann::json& sweep, const std::vector<StudyRow>& rows, int shard,
-                   int shards) {
+                   int shards, const std::string& figures, const char* who) {
   fs::create_directories(out);
   for (const StudyRow& r : rows)
     if (!r.edge.codes.empty()) write_image(r.edge, out);
   write_text_file(out / "study.csv", study_csv(rows));
   write_text_file(out / "study.json", study_json(sweep, rows, shard, shards).dump(1) + "\n");
-  if (shards == 1) {  // a slice plots nothing: merge does
-    write_plots(out, sweep, rows);
-    std::vector<fs::path> edges;
-    std::vector<std::string> labels;
-    for (const StudyRow& r : rows) {
-      edges.push_back(out / fmt::format("edge-{}.png", r.index));
-      labels.push_back(fmt::format("{} bits", r.color_bits));
-    }
-    write_strip(out / "edge_strip.png", edges, labels);
+  if (shards == 1 && figures != "none") {
+    const FigureRun f = draw_figures({"study", out.string(), "--formats", figures});
+    if (!f.ok) std::cerr << fmt::format("{}: the figures were not drawn: {}\n", who, f.message);
   }
 }
 
@@ -214,6 +145,24 @@ void write_dir_atomically(const std::string& out_arg, const std::function<void(c
 
 int slurm_study_command(const StudyCommand& c, const StudySweep& sweep);
 
+// The rows as a text table: every column of study.csv but the index, the light leaks among
+// them (docs/studies.md names each column with its unit).
+void print_study_table(const std::vector<StudyRow>& rows) {
+  std::cout << "  pixels misclassified against the double-precision reference (ref ...) and against the exact\n"
+               "  shadow test (exact ...): lit->sh lit pixels shadowed, sh->lit shadowed pixels left lit (light\n"
+               "  leaks), self surfaces facing the light shadowed (acne); wrong px: more than one code off the\n"
+               "  reference; step: one depth code in world units\n";
+  std::cout << fmt::format("  {:>4} {:>5} {:>6} {:>5} {:>6} {:>9} {:>9} {:>6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9}\n",
+                           "bits", "depth", "bias8", "map", "levels", "mean err", "wrong px", "prec", "ref l->s",
+                           "ref s->l", "ref self", "exact l->s", "exact s->l", "exact self", "step");
+  for (const StudyRow& r : rows)
+    std::cout << fmt::format(
+        "  {:>4} {:>5} {:>6.3g} {:>5} {:>6} {:>9.5f} {:>9} {:>6.2f} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9.3g}\n",
+        r.color_bits, r.depth_bits, r.bias_steps8, r.map_size, r.levels, r.mean_abs_error, r.wrong_pixels,
+        r.precision_bits, r.reference.lit_shadowed, r.reference.shadowed_lit, r.reference.self_shadowed,
+        r.exact.lit_shadowed, r.exact.shadowed_lit, r.exact.self_shadowed, r.depth_step_world);
+}
+
 }  // namespace
 
 int study_command(const StudyCommand& c) {
@@ -243,35 +192,30 @@ int study_command(const StudyCommand& c) {
     return 1;
   }
   if (c.slurm.enabled) return slurm_study_command(c, sweep);
-  const auto t0 = std::chrono::steady_clock::now();
-  auto progress = [&](int done, int total) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!c.quiet && s > 1.0) std::cerr << fmt::format("\rpassim study: {}/{} runs, {:.0f} s", done, total, s) << std::flush;
-  };
+  Progress progress("passim study", static_cast<int>(sweep.points().size() / static_cast<std::size_t>(shards) +
+                                                     (static_cast<std::size_t>(shard) < sweep.points().size() %
+                                                      static_cast<std::size_t>(shards))),
+                     c.quiet, "points");
   try {
-    const std::vector<StudyRow> rows = run_study(sweep, c.jobs, shard, shards, progress);
-    if (!c.quiet && std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > 1.0) std::cerr << "\n";
+    const std::vector<StudyRow> rows =
+        run_study(sweep, c.jobs, shard, shards, [&](int done, int) { progress.step(done); });
+    progress.finish();
     write_dir_atomically(c.out, [&](const fs::path& dir) {
-      write_outputs(dir, sweep_description(sweep), rows, shard, shards);
+      write_outputs(dir, sweep_description(sweep), rows, shard, shards, c.figures, "passim study");
     });
     if (!c.quiet) {
-      std::cout << fmt::format("{} on {}: {} of {} points -> {}/study.csv, study.json\n", sweep.base.program,
-                               sweep.base.scene, rows.size(), sweep.points().size(), c.out);
-      std::cout << "  misclassified pixels against the double-precision reference (lit->sh, sh->lit, self-sh)\n"
-                   "  and against the exact shadow test (exact ...):\n";
-      std::cout << fmt::format("  {:>4} {:>5} {:>6} {:>7} {:>9} {:>9} {:>8} {:>9} {:>9} {:>9} {:>11} {:>11} {:>11}\n",
-                               "bits", "depth", "bias8", "levels", "mean err", "max err", "prec b", "lit->sh",
-                               "sh->lit", "self-sh", "exact l->s", "exact self", "step world");
-      for (const StudyRow& r : rows)
-        std::cout << fmt::format(
-            "  {:>4} {:>5} {:>6.3g} {:>7} {:>9.5f} {:>9.5f} {:>8.2f} {:>9} {:>9} {:>9} {:>11} {:>11} {:>11.3g}\n",
-            r.color_bits, r.depth_bits, r.bias_steps8, r.levels, r.mean_abs_error, r.max_abs_error, r.precision_bits,
-            r.reference.lit_shadowed, r.reference.shadowed_lit, r.reference.self_shadowed, r.exact.lit_shadowed,
-            r.exact.self_shadowed,
-            r.depth_step_world);
+      std::cout << fmt::format("{} on {}: {} of {} points -> {}/study.csv, study.json{}\n", sweep.base.program,
+                               sweep.base.scene, rows.size(), sweep.points().size(), c.out,
+                               shards == 1 && c.figures != "none" ? ", figures" : "");
+      print_study_table(rows);
+      if (shards == 1) {
+        const nlohmann::json h = study_headline(rows);
+        if (!h.is_null()) std::cout << "\n" << h.at("statement").get<std::string>() << "\n";
+      }
     }
   } catch (const std::exception& e) {
-    std::cerr << "\npassim study: " << e.what() << "\n";
+    progress.finish();
+    std::cerr << "passim study: " << e.what() << "\n";
     return 1;
   }
   return 0;
@@ -282,28 +226,31 @@ int provenance_command(const StudyCommand& c) {
     ProgramOptions o = c.base;
     parse_size(c.size, o.width, o.height);
     if (!c.filter.empty()) o.filter = parse_filter(c.filter);
-    const std::vector<ProvenanceRow> rows = precision_provenance(o);
+    Progress progress("passim study provenance", 10, c.quiet || c.json, "runs");
+    const std::vector<ProvenanceRow> rows =
+        precision_provenance(o, [&](int done, int, const std::string& next) { progress.step(done, next); });
+    progress.finish();
+    const nlohmann::json doc = provenance_json(o, rows);
+    if (!c.out.empty()) write_text_file(c.out, doc.dump(1) + "\n");
+    if (c.json) {
+      std::cout << doc.dump(1) << "\n";
+      return 0;
+    }
     std::cout << fmt::format("{} on {}: {}-bit colour, texture formats {}, colour table {}, accumulation {}\n",
                              o.program, o.scene, o.color_bits,
                              o.texture_bits ? std::to_string(o.texture_bits) + " bits" : std::string("as the colour"),
                              o.table_bits ? std::to_string(o.table_bits) + " bits" : std::string("as the colour"),
                              o.accum_bits ? std::to_string(o.accum_bits) + " bits" : std::string("default"));
-    std::cout << fmt::format("  {:<36} {:>7} {:>11} {:>15}\n", "", "levels", "mean error", "precision bits");
-    for (const ProvenanceRow& r : rows)
-      std::cout << fmt::format("  {:<36} {:>7} {:>11.6f} {:>15.2f}\n", r.stage, r.levels, r.error.mean_abs,
-                               r.error.precision_bits);
-    // In pipeline order (the planes take the encoded depth first, then the copy to
-    // texture, the counting copy, the accumulation), the first stage whose widening
-    // alone gains precision is where information is first lost.
-    const double base = rows.front().error.precision_bits;
-    const ProvenanceRow* first = nullptr;
-    for (std::size_t k = 1; k < rows.size() && !first; ++k)
-      if (rows[k].error.precision_bits > base + 0.05) first = &rows[k];
-    if (first)
-      std::cout << fmt::format("information is first lost where \"{}\" helps: +{:.2f} bits\n", first->stage,
-                               first->error.precision_bits - base);
-    else
-      std::cout << "no single stage loses information on its own: widening any one alone gains nothing\n";
+    std::cout << fmt::format("  {:<36} {:>7} {:>11} {:>9} {:>15} {:>9}\n", "", "levels", "mean error", "wrong px",
+                             "precision bits", "recovers");
+    for (const nlohmann::json& r : doc.at("rows"))
+      std::cout << fmt::format("  {:<36} {:>7} {:>11.6f} {:>9} {:>15.2f} {:>9}\n", r.at("stage").get<std::string>(),
+                               r.at("levels").get<int>(), r.at("mean_abs_error").get<double>(),
+                               r.at("wrong_pixels").get<int>(), r.at("precision_bits").get<double>(),
+                               r.at("stage") == "as given" ? std::string("")
+                                                           : fmt::format("{:+.2f}", r.at("recovers_bits").get<double>()));
+    std::cout << doc.at("statement").get<std::string>() << "\n";
+    if (!c.out.empty()) std::cout << "wrote " << c.out << "\n";
   } catch (const std::exception& e) {
     std::cerr << "passim study provenance: " << e.what() << "\n";
     return 1;
@@ -377,15 +324,21 @@ int what_if_command(const StudyCommand& c) {
       double fps;
       std::uint64_t fragments;
     };
-    auto measure = [&](const ProgramOptions& o) {
+    Progress progress("passim study what-if", 4, c.quiet, "runs");
+    int done = 0;
+    auto measure = [&](const ProgramOptions& o, const char* which) {
+      progress.step(done++, fmt::format("{}: the program", which));
       ProgramSession session(o);
       session.frame();
       const ProgramRun run = session.finish();
       const Counters total = run.result.context->total_counters();
+      progress.step(done++, fmt::format("{}: its double-precision reference", which));
       return Result{count_levels(run.image("attenuation")), attenuation_error(run),
                     frame_cost(run.result.context->passes(), *timed).fps(), total.fragments_generated};
     };
-    const Result a = measure(base), b = measure(changed);
+    const Result a = measure(base, "as given"), b = measure(changed, "what if");
+    progress.step(done);
+    progress.finish();
     std::string what;
     for (const std::string& w : c.what_if) what += (what.empty() ? "" : ", ") + w;
     std::cout << fmt::format("{} on {}: as given against what if {}\n", base.program, base.scene, what);
@@ -395,6 +348,8 @@ int what_if_command(const StudyCommand& c) {
                              b.error.precision_bits, b.error.precision_bits - a.error.precision_bits);
     std::cout << fmt::format("  {:<34} {:>12.6f} {:>12.6f} {:>+10.6f}\n", "mean attenuation error", a.error.mean_abs,
                              b.error.mean_abs, b.error.mean_abs - a.error.mean_abs);
+    std::cout << fmt::format("  {:<34} {:>12} {:>12} {:>+10}\n", "pixels more than a code off", a.error.wrong_pixels,
+                             b.error.wrong_pixels, b.error.wrong_pixels - a.error.wrong_pixels);
     std::cout << fmt::format("  {:<34} {:>12} {:>12} {:>+10}\n", "fragments", a.fragments, b.fragments,
                              static_cast<std::int64_t>(b.fragments) - static_cast<std::int64_t>(a.fragments));
     std::cout << fmt::format("  {:<34} {:>12.2f} {:>12.2f} {:>+9.0f}%\n", fmt::format("fps on {}", timed->name), a.fps,
@@ -406,7 +361,7 @@ int what_if_command(const StudyCommand& c) {
   return 0;
 }
 
-int merge_command(const std::vector<std::string>& dirs, const std::string& out) {
+int merge_command(const std::vector<std::string>& dirs, const std::string& out, const std::string& figures) {
   try {
     std::vector<nlohmann::json> slices;
     for (const std::string& d : dirs) {
@@ -428,7 +383,7 @@ int merge_command(const std::vector<std::string>& dirs, const std::string& out) 
           const fs::path edge = fs::path(d) / fmt::format("edge-{}.png", r.index);
           if (fs::exists(edge)) fs::copy_file(edge, dir / edge.filename(), fs::copy_options::overwrite_existing);
         }
-      write_outputs(dir, sweep, rows, 0, 1);
+      write_outputs(dir, sweep, rows, 0, 1, figures, "passim merge");
     });
     std::cout << fmt::format("merged {} slices, {} points -> {}/study.csv, study.json\n", slices.size(), rows.size(), out);
   } catch (const std::exception& e) {
@@ -449,81 +404,6 @@ int merge_command(const std::vector<std::string>& dirs, const std::string& out) 
 // appears whole or not at all (write_dir_atomically), so a killed task is simply redone.
 
 namespace {
-
-// What a program printed and how it ended.
-struct ProcessResult {
-  bool started = false;  // false: not found or not executable
-  int status = -1;       // exit status; 128 + the signal when killed
-  std::string out, err;
-};
-
-// Runs argv (argv[0] looked up on the PATH) with stdin from /dev/null; collects stdout and stderr.
-ProcessResult run_process(const std::vector<std::string>& argv) {
-  ProcessResult r;
-  int out_pipe[2], err_pipe[2];
-  if (pipe(out_pipe) != 0) return r;
-  if (pipe(err_pipe) != 0) {
-    close(out_pipe[0]), close(out_pipe[1]);
-    return r;
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);
-  posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
-  for (int fd : {out_pipe[0], out_pipe[1], err_pipe[0], err_pipe[1]}) posix_spawn_file_actions_addclose(&actions, fd);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(out_pipe[1]), close(err_pipe[1]);
-  if (spawned != 0) {
-    close(out_pipe[0]), close(err_pipe[0]);
-    return r;
-  }
-  r.started = true;
-  // Both pipes read as they fill, so a child writing much to one never blocks on it.
-  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
-  std::string* sinks[2] = {&r.out, &r.err};
-  for (int open_pipes = 2; open_pipes > 0;) {
-    if (poll(fds, 2, -1) < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    for (int k = 0; k < 2; ++k) {
-      if (fds[k].fd < 0 || !(fds[k].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-      char buf[4096];
-      const ssize_t n = read(fds[k].fd, buf, sizeof buf);
-      if (n > 0) {
-        sinks[k]->append(buf, static_cast<std::size_t>(n));
-      } else if (n == 0 || errno != EINTR) {
-        close(fds[k].fd);
-        fds[k].fd = -1;
-        --open_pipes;
-      }
-    }
-  }
-  for (const pollfd& f : fds)
-    if (f.fd >= 0) close(f.fd);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-  return r;
-}
-
-// The program's path if it is on the PATH, else "".
-std::string find_on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  for (std::string d; std::getline(dirs, d, ':');) {
-    const fs::path p = fs::path(d.empty() ? "." : d) / name;
-    if (access(p.c_str(), X_OK) == 0 && !fs::is_directory(p)) return p.string();
-  }
-  return "";
-}
 
 std::string trim(const std::string& s) {
   const std::size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
@@ -874,6 +754,7 @@ std::vector<std::string> study_arguments(const StudyCommand& c) {
   add("--depth-bits", c.depth_bits);
   add("--bias", c.biases);
   add("--map", c.maps);
+  add("--figures", c.figures);
   add("--jobs", std::to_string(c.jobs));
   a.push_back("--quiet");
   return a;
@@ -960,10 +841,11 @@ std::string merge_script(const StudyCommand& c, const SlurmStudy& s, const fs::p
       "echo \"passim merge of {n} shards on $(hostname) at $(date -Is)\"\n"
       "slices=()\n"
       "for ((i = 1; i <= {n}; i++)); do slices+=(\"$STUDY/shards/$i\"); done\n"
-      "exec \"$PASSIM\" merge \"${{slices[@]}}\" --out \"$STUDY\"\n",
+      "exec \"$PASSIM\" merge \"${{slices[@]}}\" --figures {figures} --out \"$STUDY\"\n",
       fmt::arg("n", s.shards), fmt::arg("script", s.merge_script().string()), fmt::arg("job", s.merge_job()),
       fmt::arg("logs", (s.slurm_dir() / "logs").string()), fmt::arg("options", sbatch_options(c, cwd)),
-      fmt::arg("passim", shell_quote(passim.string())), fmt::arg("dir", s.dir.string()));
+      fmt::arg("passim", shell_quote(passim.string())), fmt::arg("dir", s.dir.string()),
+      fmt::arg("figures", shell_quote(c.figures)));
 }
 
 int slurm_study_command(const StudyCommand& c, const StudySweep& sweep) {

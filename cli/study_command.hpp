@@ -13,6 +13,8 @@ struct StudyCommand {
   std::string size = "800x600", bits = "4-16", depth_bits, biases, maps, filter, shard = "1/1", out = "study";
   std::vector<std::string> what_if;          // KEY=VALUE changes (study what-if)
   std::string cost_profile = "octane-vpro8";  // the machine the what-if is timed on
+  std::string figures = "png,svg,pdf";        // the figures' formats, or "none"
+  bool json = false;                          // provenance: JSON instead of the table
   int jobs = 1;
   bool quiet = false;
   // --slurm: the sweep as a Slurm array job, one shard per task, and a merge job after it.
@@ -33,6 +35,7 @@ int study_status_command(const std::string& dir, bool json);
 int study_resume_command(const std::string& dir);
 int provenance_command(const StudyCommand& command);
 int what_if_command(const StudyCommand& command);
-int merge_command(const std::vector<std::string>& dirs, const std::string& out);
+int merge_command(const std::vector<std::string>& dirs, const std::string& out,
+                  const std::string& figures = "png,svg,pdf");
 
 }  // namespace passim

@@ -1,5 +1,7 @@
-// Image files through OpenImageIO: colour planes as 8-bit PNG (widths <= 8) or
-// 16-bit PNG/TIFF (wider), depth as single-channel float EXR, stencil as 8-bit PNG.
+// Image files: colour planes as 8-bit PNG (widths <= 8) or 16-bit PNG/TIFF (wider), depth as
+// single-channel float EXR, stencil as 8-bit PNG. Each file records the planes' true widths
+// (PNG sBIT and text chunks, TIFF and EXR attributes; docs/images.md). PNG through
+// libpng (OpenImageIO 2.4 writes no sBIT), TIFF and EXR through OpenImageIO.
 // Files are written to a temporary name and renamed, so no half-written file remains.
 #pragma once
 #include <filesystem>
@@ -14,10 +16,6 @@ std::string image_file_name(const CapturedImage& image, bool prefer_tiff = false
 
 // Writes the image into `dir`; returns the path. Throws std::runtime_error on failure.
 std::filesystem::path write_image(const CapturedImage& image, const std::filesystem::path& dir, bool prefer_tiff = false);
-
-// Writes an 8-bit RGB picture given top row first (3 bytes per pixel), as `file` (PNG by
-// its extension), atomically. For figures and plots.
-void write_rgb8(const std::filesystem::path& file, int width, int height, const std::vector<std::uint8_t>& top_first);
 
 // Writes text to `path` atomically (temporary file + rename).
 void write_text_file(const std::filesystem::path& path, const std::string& text);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "reports/image_io.hpp"
 
 namespace passim {
@@ -33,8 +35,12 @@ nlohmann::json run_report(const ReplayResult& run, const std::string& trace_name
   json images = json::array();
   for (std::size_t k = 0; k < run.images.size(); ++k) {
     const CapturedImage& img = run.images[k];
+    // "bits": each channel's width, so that a reader of a 16-bit file recovers the codes
+    // (docs/images.md).
+    json bits = json::array();
+    for (int c = 0; c < std::min(img.channels, 4); ++c) bits.push_back(img.bits[static_cast<std::size_t>(c)]);
     json entry = {{"name", img.name}, {"plane", img.plane}, {"hash", img.hash}, {"width", img.width},
-                  {"height", img.height}};
+                  {"height", img.height}, {"bits", bits}};
     if (img.plane == "color") entry["buffer"] = img.buffer;
     if (k < image_files.size()) entry["file"] = image_files[k];
     images.push_back(entry);

@@ -4,6 +4,7 @@
 
 #include "reports/cost.hpp"
 #include "programs/programs.hpp"
+#include "reports/paper_check.hpp"
 
 namespace passim {
 namespace {
@@ -48,35 +49,59 @@ TEST(CostModel, APassTakesItsSlowestStagePlusTheOverhead) {
   EXPECT_EQ(pass_cost(Pass{}, m).total, 0.0);
 }
 
-double vpro_fps(const char* program, int filter, const char* scene) {
-  const MachineProfile& vpro = *find_profile("octane-vpro8");
-  ProgramOptions o;
-  o.program = program;
-  o.filter = filter;
-  o.scene = scene;
-  o.profile = vpro.name;
-  o.color_bits = vpro.color_bits[0];
-  ProgramSession s(o);
-  s.frame();
-  return frame_cost(s.run().result.context->passes(), vpro).fps();
+// The six published frame rates' runs on the VPro, made once for the tests below.
+const std::vector<std::vector<Pass>>& vpro_runs() {
+  static const std::vector<std::vector<Pass>> runs = published_runs(*find_profile("octane-vpro8"));
+  return runs;
 }
 
-TEST(CostModel, VproReproducesFigure7sRatesAndRanking) {
-  // Published (Brabec & Seidel §5): shadow map 25-30, PCF 2x2 ≈ 10 (taken as 9-11), fast
-  // PCF 2x2 15-20, fast PCF 4x4 ≈ 5 (4.5-5.5). The rates were fitted to these (docs/cost-model.md).
-  const double sm = vpro_fps("shadow-map", 0, "paper"), pcf = vpro_fps("pcf", 2, "paper");
-  const double fast = vpro_fps("fast-pcf", 2, "paper"), fast4 = vpro_fps("fast-pcf", 4, "paper");
-  EXPECT_GE(sm, 25.0);
-  EXPECT_LE(sm, 30.0);
-  EXPECT_GE(pcf, 9.0);
-  EXPECT_LE(pcf, 11.0);
-  EXPECT_GE(fast, 15.0);
-  EXPECT_LE(fast, 20.0);
-  EXPECT_GE(fast4, 4.5);
-  EXPECT_LE(fast4, 5.5);
-  EXPECT_GT(sm, fast);
-  EXPECT_GT(fast, pcf);
-  EXPECT_GT(pcf, fast4);
+TEST(CostModel, TheProfilesRatesReproduceFigure7ItWasFittedTo) {
+  // A check of the fit, not of the model: octane-vpro8's free rates were fitted to Figure 7's
+  // four published ranges (Brabec & Seidel §5: 25-30, about 10, 15-20, about 5 fps), so its
+  // predictions lie inside them, in the paper's order.
+  const MachineProfile& vpro = *find_profile("octane-vpro8");
+  std::vector<double> fps;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const PublishedFrameRate& r = published_frame_rates()[k];
+    fps.push_back(frame_cost(vpro_runs()[k], vpro).fps());
+    EXPECT_GE(fps.back(), r.low) << r.what;
+    EXPECT_LE(fps.back(), r.high) << r.what;
+  }
+  EXPECT_GT(fps[0], fps[2]);  // shadow map > fast PCF 2x2 > PCF 2x2 > fast PCF 4x4
+  EXPECT_GT(fps[2], fps[1]);
+  EXPECT_GT(fps[1], fps[3]);
+}
+
+TEST(CostModel, HeldOutPredictionsMissAsMeasured) {
+  // The model's quality (docs/cost-model.md, "Leave-one-out"): each published rate predicted by
+  // rates fitted to the other five. The misses below are the measured ones (a regression
+  // value, labelled as such: they changed only if the model, the runs or the fit changed), to
+  // ±3 percentage points. They are poor for PCF 2x2 and Figure 8's shadow map: the model does
+  // not predict the paper out of sample.
+  const MachineProfile& vpro = *find_profile("octane-vpro8");
+  const std::vector<PaperPrediction> p = paper_predictions(vpro, vpro_runs());
+  const double measured[] = {-0.33, +0.48, -0.02, -0.08, +0.51, 0.00};
+  ASSERT_EQ(p.size(), std::size(measured));
+  for (std::size_t k = 0; k < p.size(); ++k)
+    EXPECT_NEAR(range_miss(p[k].held_out, p[k].published.low, p[k].published.high), measured[k], 0.03)
+        << p[k].published.what << ": " << p[k].held_out << " fps";
+}
+
+TEST(CostModel, AHeldOutPredictionDoesNotSeeItsOwnPublishedRate) {
+  // Moving one published range far away changes nothing in that rate's held-out prediction
+  // (its fit never sees it), while the fits that do see it move.
+  const MachineProfile& vpro = *find_profile("octane-vpro8");
+  const std::vector<PaperPrediction> base = paper_predictions(vpro, vpro_runs(), 3000);
+  for (std::size_t k : {std::size_t{1}, std::size_t{4}}) {
+    std::vector<PublishedFrameRate> moved = published_frame_rates();
+    moved[k].low *= 3.0, moved[k].high *= 3.0;
+    const std::vector<PaperPrediction> other = paper_predictions(vpro, vpro_runs(), 3000, moved);
+    EXPECT_EQ(other[k].held_out, base[k].held_out) << moved[k].what;
+    bool any_moved = false;
+    for (std::size_t j = 0; j < base.size(); ++j)
+      if (j != k && other[j].held_out != base[j].held_out) any_moved = true;
+    EXPECT_TRUE(any_moved) << moved[k].what;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 // Image files hold the framebuffer's codes exactly (docs/trace-format.md "Image files").
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
+#include <png.h>
+
+#include <cstdio>
 
 #include <filesystem>
 
@@ -55,6 +58,81 @@ TEST(ImageFiles, RgbaPngKeepsColourWhereAlphaIsSmall) {
                   : std::vector<std::uint16_t>{51404, 25702, 112, 16452, 65535, 16, 0, 0};
     EXPECT_EQ(raw, want) << bits << " bits";
   }
+}
+
+// A PNG's significant bits (sBIT) and samples, read with libpng as any PNG reader would.
+struct PngRead {
+  png_color_8 sbit{};
+  bool has_sbit = false;
+  int depth = 0, channels = 0;
+  std::vector<std::uint32_t> samples;
+};
+PngRead read_png(const std::filesystem::path& file) {
+  PngRead r;
+  FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return r;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    return r;
+  }
+  png_init_io(png, f);
+  png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_color_8p sbit = nullptr;
+  if (png_get_sBIT(png, info, &sbit)) r.sbit = *sbit, r.has_sbit = true;
+  r.depth = png_get_bit_depth(png, info);
+  r.channels = png_get_channels(png, info);
+  const png_bytepp rows = png_get_rows(png, info);
+  const std::size_t per_row = png_get_image_width(png, info) * static_cast<std::size_t>(r.channels);
+  for (png_uint_32 y = 0; y < png_get_image_height(png, info); ++y)
+    for (std::size_t k = 0; k < per_row; ++k)
+      r.samples.push_back(r.depth == 16 ? (static_cast<std::uint32_t>(rows[y][2 * k]) << 8) | rows[y][2 * k + 1]
+                                        : rows[y][k]);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return r;
+}
+
+// The true width survives in the file (docs/images.md): the sBIT chunk names it, and the top
+// `bits` bits of each sample are the code (a code k at n bits is stored as round(k·(2^f − 1) /
+// (2^n − 1)) = k·2^(f−n) + a remainder below 2^(f−n), derived in docs/images.md).
+TEST(ImageFiles, PngKeepsTheTrueWidthInSbit) {
+  const auto dir = std::filesystem::temp_directory_path() / "passim-image-io-sbit";
+  std::filesystem::create_directories(dir);
+  for (int bits : {1, 4, 6, 9, 12, 15}) {
+    CapturedImage img;
+    img.name = "grey" + std::to_string(bits);
+    img.plane = "alpha";
+    img.width = 4;
+    img.height = 1;
+    img.channels = 1;
+    img.bits = {bits, 0, 0, 0};
+    const std::uint32_t max = (1u << bits) - 1;
+    img.codes = {0, 1, max / 2, max};
+    const PngRead r = read_png(write_image(img, dir));
+    ASSERT_TRUE(r.has_sbit) << bits;
+    EXPECT_EQ(r.sbit.gray, bits);
+    const int file_bits = bits > 8 ? 16 : 8;
+    EXPECT_EQ(r.depth, file_bits);
+    ASSERT_EQ(r.samples.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(r.samples[k] >> (file_bits - bits), img.codes[k]) << bits;
+  }
+  // RGB at 10 bits: one width per channel.
+  CapturedImage rgb;
+  rgb.name = "rgb10";
+  rgb.plane = "rgb";
+  rgb.width = 1;
+  rgb.height = 1;
+  rgb.channels = 3;
+  rgb.bits = {10, 10, 10, 0};
+  rgb.codes = {1023, 512, 3};
+  const PngRead r = read_png(write_image(rgb, dir));
+  EXPECT_EQ(r.sbit.red, 10);
+  EXPECT_EQ(r.sbit.green, 10);
+  EXPECT_EQ(r.sbit.blue, 10);
+  EXPECT_EQ(r.samples, (std::vector<std::uint32_t>{65535, 32800, 192}));  // round(k·65535/1023) by hand
 }
 
 }  // namespace

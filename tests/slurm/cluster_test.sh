@@ -55,7 +55,7 @@ wait_gone() {
 }
 
 # 12 points in 4 shards of 3 (each task a second or two, so that one can be killed running).
-study=(study precision --program pcf --filter 2x2 --scene paper --size 320x240 --bits 6,8,10,12 --bias 0,0.5,1)
+study=(study precision --program pcf --filter 2x2 --scene paper --size 320x240 --bits 6,8,10,12 --bias 0,0.5,1 --figures png)
 
 echo "== a partition that does not exist"
 run 1 nopart "$passim" "${study[@]}" --slurm --partition nope --out nopart

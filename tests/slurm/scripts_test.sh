@@ -32,7 +32,7 @@ same_files() {  # every file of the one-machine run, byte for byte
   echo "  $n files identical to the one-machine run's"
 }
 
-study=(study precision --program pcf --filter 2x2 --scene edges --size 160x120 --bits 6,8,12 --bias 0,1)
+study=(study precision --program pcf --filter 2x2 --scene edges --size 160x120 --bits 6,8,12 --bias 0,1 --figures png)
 run 0 local "$passim" "${study[@]}" -q --out local
 
 echo "== the scripts by hand"
