@@ -180,6 +180,7 @@ const std::vector<CallInfo>& table() {
       ROW(glEnable, "e:cap", kNone),
       ROW(glDisable, "e:cap", kNone),
       ROW(glIsEnabled, "e:cap", kNotCompiled),
+      ROW(glGetString, "e:name", kNotCompiled),
       ROW(glGetIntegerv, "e:pname Op:params", kQuery),
       ROW(glGetFloatv, "e:pname Op:params", kQuery),
       ROW(glGetDoublev, "e:pname Op:params", kQuery),

@@ -68,6 +68,7 @@ class Context {
   void glEnable(GLenum cap);
   void glDisable(GLenum cap);
   GLboolean glIsEnabled(GLenum cap);
+  const GLubyte* glGetString(GLenum name);
   void glGetIntegerv(GLenum pname, GLint* params);
   void glGetFloatv(GLenum pname, GLfloat* params);
   void glGetDoublev(GLenum pname, GLdouble* params);

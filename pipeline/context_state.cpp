@@ -112,6 +112,24 @@ void Context::glDisable(GLenum cap) {
   if (!set_capability(cap, false)) set_error(GL_INVALID_ENUM);
 }
 
+// §6.1.5: the implementation's strings, static for the context's life. passim names itself
+// and the machine profile it models; the extensions are those it models (docs/status.md).
+const GLubyte* Context::glGetString(GLenum name) {
+  PASSIM_ENTRY_RET(nullptr, name)
+  static const std::string vendor = "passim", version = "1.2 passim",
+                           extensions = "GL_ARB_imaging GL_ARB_depth_texture GL_ARB_shadow GL_EXT_debug_marker "
+                                        "GL_SGIX_depth_texture GL_SGIX_shadow GL_SGIX_shadow_ambient";
+  const std::string* text = nullptr;
+  switch (name) {
+    case GL_VENDOR: text = &vendor; break;
+    case GL_RENDERER: text = &profile_.name; break;
+    case GL_VERSION: text = &version; break;
+    case GL_EXTENSIONS: text = &extensions; break;
+    default: set_error(GL_INVALID_ENUM); return nullptr;
+  }
+  return reinterpret_cast<const GLubyte*>(text->c_str());
+}
+
 GLboolean Context::glIsEnabled(GLenum cap) {
   PASSIM_ENTRY_RET(GL_FALSE, cap)
   std::vector<double> v;

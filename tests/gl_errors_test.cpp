@@ -149,3 +149,24 @@ TEST(GlErrors, StackDepthsAndLimits) {
   ctx.glGetIntegerv(GL_MODELVIEW_STACK_DEPTH, &depth);
   EXPECT_EQ(depth, max_mv);
 }
+
+TEST(GlErrors, GetStringNamesTheImplementationAndRejectsOtherNames) {
+  // §6.1.5: VENDOR, RENDERER, VERSION and EXTENSIONS; any other name is INVALID_ENUM and a
+  // call between Begin and End INVALID_OPERATION, both returning NULL.
+  Context ctx(test::small_config(8, 8));
+  auto text = [&](GLenum name) {
+    const GLubyte* s = ctx.glGetString(name);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("(null)");
+  };
+  EXPECT_EQ(text(GL_VENDOR), "passim");
+  EXPECT_EQ(text(GL_RENDERER), "ideal");  // the machine profile modelled
+  EXPECT_EQ(text(GL_VERSION).rfind("1.2", 0), 0u);  // "<major>.<minor>" first (§6.1.5)
+  EXPECT_NE(text(GL_EXTENSIONS).find("GL_ARB_imaging"), std::string::npos);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(text(GL_TEXTURE_2D), "(null)");
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_ENUM));
+  ctx.glBegin(GL_POINTS);
+  EXPECT_EQ(text(GL_VENDOR), "(null)");
+  ctx.glEnd();
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_INVALID_OPERATION));
+}

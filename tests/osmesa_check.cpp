@@ -10,8 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "bench/peer_frame.hpp"
 #include "pipeline/context.hpp"
 
 namespace {
@@ -57,7 +59,22 @@ struct MesaGL {
   FWD(glTexGeni, (GLenum c, GLenum p, GLint v), (c, p, v))
   FWD(glTexGenfv, (GLenum c, GLenum p, const GLfloat* v), (c, p, v))
   FWD(glPixelStorei, (GLenum p, GLint v), (p, v))
+  FWD(glViewport, (GLint x, GLint y, GLsizei w, GLsizei h), (x, y, w, h))
+  FWD(glScissor, (GLint x, GLint y, GLsizei w, GLsizei h), (x, y, w, h))
+  FWD(glDepthMask, (GLboolean f), (f))
+  FWD(glLoadMatrixf, (const GLfloat* m), (m))
+  FWD(glColor3f, (float r, float g, float b), (r, g, b))
+  FWD(glNormal3fv, (const GLfloat* v), (v))
+  FWD(glVertex3fv, (const GLfloat* v), (v))
+  FWD(glColorMaterial, (GLenum f, GLenum m), (f, m))
+  FWD(glGenTextures, (GLsizei n, GLuint* t), (n, t))
+  FWD(glCopyTexSubImage2D, (GLenum t, GLint l, GLint xo, GLint yo, GLint x, GLint y, GLsizei w, GLsizei h),
+      (t, l, xo, yo, x, y, w, h))
+  FWD(glNewList, (GLuint l, GLenum m), (l, m))
+  FWD(glEndList, (), ())
+  FWD(glCallList, (GLuint l), (l))
 #undef FWD
+  GLuint glGenLists(GLsizei n) { return ::glGenLists(n); }
 };
 
 template <class G>
@@ -235,7 +252,7 @@ struct Stats {
 };
 
 template <class F>
-Stats compare(F scene, const char* name) {
+Stats compare(F scene, const char* name, const int W = ::W, const int H = ::H) {
   // Mesa
   OSMesaContext mesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   EXPECT_NE(mesa, nullptr);
@@ -307,3 +324,18 @@ SCENE_TEST(lit_geometry, 0.997, 1)                 // measured 99.708 %, 1
 SCENE_TEST(texgen_ramp, 1.0, 0)                    // measured 100 %, 0
 SCENE_TEST(projective_reverse_subtract, 0.996, 1)  // measured 99.625 %, 1
 SCENE_TEST(masks_and_equations, 0.998, 1)          // measured 99.839 %, 1
+
+// The speed peer's section-2 frame (bench/peer_frame.hpp, transcribed from osmesa_bench's
+// shadow_frameA) drawn by both: the transcription is the peer's work, pixel for pixel but
+// for the differences of the scenes above.
+TEST(AgainstMesa, PeerShadowFrameA) {
+  const Stats s = compare(
+      [](auto& gl) {
+        passim::peer::ShadowFrame<std::decay_t<decltype(gl)>> frame(gl, 800, 600);
+        frame.setup();
+        frame.frame();
+      },
+      "peer_shadow_frameA", 800, 600);
+  EXPECT_GE(s.identical, 0.999);  // measured 99.944 %
+  EXPECT_LE(s.max_diff, 2);       // measured 2
+}
