@@ -228,14 +228,20 @@ void Context::swap_buffers() {
   fb_.color[0].rgba = fb_.color[1].rgba;  // the back buffer's content is kept (GLX leaves it undefined)
 }
 
-void Context::set_client_array_extent(GLenum array, std::size_t bytes) {
+bool Context::adopt_client_array_data(GLenum array, const void* data, std::size_t bytes) {
+  ClientArray* a = nullptr;
   switch (array) {
-    case GL_VERTEX_ARRAY: arrays_.vertex.extent = bytes; break;
-    case GL_NORMAL_ARRAY: arrays_.normal.extent = bytes; break;
-    case GL_COLOR_ARRAY: arrays_.color.extent = bytes; break;
-    case GL_TEXTURE_COORD_ARRAY: arrays_.texcoord.extent = bytes; break;
-    default: break;
+    case GL_VERTEX_ARRAY: a = &arrays_.vertex; break;
+    case GL_NORMAL_ARRAY: a = &arrays_.normal; break;
+    case GL_COLOR_ARRAY: a = &arrays_.color; break;
+    case GL_TEXTURE_COORD_ARRAY: a = &arrays_.texcoord; break;
+    default: return false;
   }
+  // A pointer call the GL rejected (§2.5: the command has no effect) left the array as it was,
+  // still reading its earlier data: that data stays the caller's to keep.
+  if (a->pointer != data) return false;
+  a->extent = bytes;
+  return true;
 }
 
 }  // namespace passim

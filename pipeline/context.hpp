@@ -354,8 +354,10 @@ class Context {
   void set_source_location(std::string where) { where_ = std::move(where); }
   // The colour buffer a name (GL_FRONT/GL_BACK...) reads from; nullptr when absent.
   const ColorPlane* color_buffer(GLenum which) const;
-  // Bytes behind a client-array pointer (set by the trace replayer for bounds checks).
-  void set_client_array_extent(GLenum array, std::size_t bytes);
+  // The trace replayer tells how many bytes lie behind the data it just gave a pointer call
+  // (for bounds checks). False when the array does not point at that data (the call raised an
+  // error and had no effect), so the replayer keeps the earlier data alive.
+  bool adopt_client_array_data(GLenum array, const void* data, std::size_t bytes);
   const PixelStore& unpack_store() const { return pixel_store_.unpack; }
   // The texture object bound to a target (GL_TEXTURE_1D/2D); nullptr for another target.
   const TextureObject* bound_texture(GLenum target) const;

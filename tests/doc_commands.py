@@ -111,8 +111,10 @@ def main():
         if r.returncode != 0:
             failures.append(f"{where}: `{command}` exited {r.returncode}:\n{r.stderr[-2000:]}")
     # The tests the docs cite by name.
-    listed = subprocess.run([str(build / "tests/passim_tests"), "--gtest_list_tests"], capture_output=True,
-                            text=True, check=True).stdout
+    listed = "".join(subprocess.run([str(binary), "--gtest_list_tests"], capture_output=True, text=True,
+                                    check=True).stdout
+                     for binary in (build / "tests/passim_tests", build / "tests/passim_osmesa_check")
+                     if binary.exists())
     have, suite = set(), ""
     for line in listed.splitlines():
         if not line.startswith(" "):

@@ -226,6 +226,23 @@ TEST(TraceRecord, ExampleTracesReRecordToTheSameBits) {
   }
 }
 
+// Found by fuzzing (an apitrace corpus input): a pointer call the GL rejects (size 5 is
+// GL_INVALID_VALUE, §2.8) has no effect, so the array still reads the earlier data, which the
+// replayer must keep. The earlier triangle covers the lower-left half of the 4x4 window:
+// 6 pixel centres with x + y < 3 (as in MeshDirectiveDrawsAnObjFile).
+TEST(TraceParse, RejectedPointerCallKeepsTheEarlierArray) {
+  const std::string text = "passim-trace 1\n@framebuffer 4x4 color=8 double=no\n"
+                           "glMatrixMode(GL_PROJECTION)\nglOrtho(0, 4, 0, 4, -1, 1)\n"
+                           "glEnableClientState(GL_VERTEX_ARRAY)\n"
+                           "glVertexPointer(2, GL_FLOAT, 0, {0, 0, 4, 0, 0, 4})\n"
+                           "glVertexPointer(5, GL_FLOAT, 0, {9, 9, 9, 9, 9})\n"
+                           "glDrawArrays(GL_TRIANGLES, 0, 3)\n";
+  ReplayResult r = replay(text);
+  ASSERT_EQ(r.context->error_log().size(), 1u);
+  EXPECT_EQ(r.context->error_log()[0].error, static_cast<GLenum>(GL_INVALID_VALUE));
+  EXPECT_EQ(r.context->total_counters().fragments_generated, 6u);
+}
+
 TEST(TraceParse, MeshDirectiveDrawsAnObjFile) {
   // A one-triangle OBJ covering the lower-left half of a 4x4 window (ortho 0..4):
   // centres with x + y < 3 (x + y = 3 lies on the hypotenuse, a right/top edge): 6 fragments.
