@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -398,6 +399,10 @@ class Replayer {
     for (const auto& [key, value] : fb_overrides_) apply_framebuffer_setting(f, key, value);
     if (!fb_overrides_.count("accum") && fb_overrides_.count("color"))
       f.accum_bits = FramebufferConfig::default_accum_bits(f.color_bits);
+    if (options_.window_limit > 0) {
+      f.width = std::min(f.width, options_.window_limit);
+      f.height = std::min(f.height, options_.window_limit);
+    }
     s.framebuffer = f;
     s.subpixel_bits = subpixel_;
     MachineProfile m = s.machine();

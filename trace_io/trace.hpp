@@ -56,6 +56,10 @@ struct ReplayOptions {
   // Folders besides the trace's own that side files may come from (side_files.hpp).
   std::vector<std::filesystem::path> allow_files;
   Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
+  // When above 0, the window is at most this wide and high: a larger @framebuffer (or the
+  // default 800x600) is cut down to it. For fuzzing, where every run must be quick; the
+  // commands never set it.
+  int window_limit = 0;
 };
 
 struct ReplayResult {
