@@ -1,6 +1,7 @@
 // Context: texture objects (§3.8.12), images and their copies (§3.8.1-3.8.3) and texture
 // parameters (§3.8.4).
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -119,14 +120,11 @@ void write_texels(TextureLevel& level, int x0, int y0, int width, int height, co
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t src = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-      std::uint32_t* dst = &level.texels[4 * (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(level.width) +
-                                              static_cast<std::size_t>(x0 + x))];
-      if (depth) {
-        dst[0] = float_to_fixed(depth[src], level.format.depth);
-        dst[1] = dst[2] = dst[3] = 0;
-      } else {
-        texel_codes(level.format, rgba[src], dst);
-      }
+      std::uint32_t codes[4] = {0, 0, 0, 0};
+      if (depth) codes[0] = float_to_fixed(depth[src], level.format.depth);
+      else texel_codes(level.format, rgba[src], codes);
+      level.set_texel(static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x0 + x),
+                      codes);
     }
 }
 }  // namespace
@@ -171,12 +169,17 @@ void Context::copy_color_texels(int dims, int x, int y, int width, int height, T
     // transferred reals), then looked up per texel, by ranges of rows on the lanes. A stored
     // component is one of the source's own (Table 3.15: L and I from R), so output component
     // k is a function of source component k alone; unstored components are 0 in every entry.
-    std::vector<std::uint32_t> table(4 * table_reals.size());
-    for (std::size_t i = 0; i < table_reals.size(); ++i) texel_codes(level.format, table_reals[i], &table[4 * i]);
+    // (A colour level's codes are at most 16 bits wide: TextureLevel::texels holds them.)
+    std::vector<std::uint16_t> table(4 * table_reals.size());
+    for (std::size_t i = 0; i < table_reals.size(); ++i) {
+      std::uint32_t codes[4];
+      texel_codes(level.format, table_reals[i], codes);
+      std::copy_n(codes, 4, &table[4 * i]);
+    }
     count_transfer(transfer_, transform_.color.back(), n, n, c);
     const std::size_t level_width = static_cast<std::size_t>(level.width);
     const auto rows = [&](int first, int end) {
-      std::uint32_t* out =
+      std::uint16_t* out =
           &level.texels[4 * (static_cast<std::size_t>(y0 + first) * level_width + static_cast<std::size_t>(x0))];
       source.through_table(first, end - first, table.data(), out, 4 * level_width);
     };
@@ -213,7 +216,16 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   if (static_cast<std::int64_t>(width) * (dims == 2 ? height : 1) > profile_.limits.max_texture_texels)
     return set_error(GL_OUT_OF_MEMORY);
   if ((format == GL_DEPTH_COMPONENT) != (fmt_info->base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
-  if (pixels && !rectangle_fits_in_memory(source_width, source_height)) return;
+  // Without a convolution, histogram or minmax (which see the whole image at once), the image
+  // goes through the pixel path in bands of rows: the scratch reals are a band's, so a 4096²
+  // RGBA8 level loads with 4 MiB of scratch rather than 512 MiB. Every step is per pixel and
+  // counts per pixel: the bands give the same texels and counters.
+  constexpr int kBandRows = 32;
+  const bool banded = format != GL_DEPTH_COMPONENT && !active_convolution(transfer_, dims) &&
+                      !transfer_.histogram.enabled && !transfer_.minmax.enabled &&
+                      pixel_store_.unpack.skip_rows <= std::numeric_limits<int>::max() - source_height;
+  if (pixels && !rectangle_fits_in_memory(source_width, banded ? std::min(kBandRows, source_height) : source_height))
+    return;
   TextureObject& tex = *texture_for(target);
   // §2.5: the level is charged to the budget (the level it replaces released): OUT_OF_MEMORY
   // when it does not fit, and the old level stays.
@@ -238,6 +250,18 @@ void Context::tex_image(GLenum target, int dims, GLint level, GLint internalform
   std::vector<Rgba> rgba;
   std::vector<double> depth;
   // §3.8.1: the DrawPixels path (unpack, pixel transfer) up to the final conversion.
+  if (banded) {
+    for (int first = 0; first < source_height; first += kBandRows) {
+      const int rows = std::min(kBandRows, source_height - first);
+      PixelStore band = pixel_store_.unpack;
+      band.skip_rows += first;  // §3.6.4: the band's first row, as the image's row `first`
+      unpack_rgba(pixels, source_width, rows, format, type, band, rgba);
+      int tw = source_width, th = rows;
+      transfer_rgba(rgba, tw, th, transfer_, transform_.color.back(), counters(), dims);  // no sink: true
+      store_texels(l, 0, first, l.width, rows, rgba, nullptr);
+    }
+    return;
+  }
   if (format == GL_DEPTH_COMPONENT) {
     unpack_depth(pixels, l.width, l.height, type, pixel_store_.unpack, depth);
     transfer_depth(depth, transfer_);
@@ -483,7 +507,6 @@ void Context::SourceCodes::through_table(int first_row, int rows, const Code* ta
   }
 }
 template void Context::SourceCodes::through_table(int, int, const std::uint16_t*, std::uint16_t*, std::size_t) const;
-template void Context::SourceCodes::through_table(int, int, const std::uint32_t*, std::uint32_t*, std::size_t) const;
 
 std::vector<Rgba> Context::transfer_table(const SourceCodes& source, int dims, std::uint64_t pixels) {
   const Mat4& matrix = transform_.color.back();
@@ -612,27 +635,33 @@ void Context::glGetTexImage(GLenum target, GLint level, GLenum format, GLenum ty
     return set_error(GL_INVALID_VALUE);
   const TextureLevel& l = tex->levels[static_cast<std::size_t>(level)];
   if ((format == GL_DEPTH_COMPONENT) != (l.format.base == GL_DEPTH_COMPONENT)) return set_error(GL_INVALID_OPERATION);
-  // §6.1.4 (A13): no pixel transfer; texel components as RGBA (L in R, I in R, D in R).
-  std::vector<Rgba> out(static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.height));
+  // §6.1.4 (A13): no pixel transfer; texel components as RGBA (L in R, I in R, D in R). In
+  // bands of rows (each packed as the image's rows from `first` on), so the scratch reals
+  // are a band's, not the level's.
+  constexpr int kBandRows = 32;
+  // (Rows past what an int addresses cannot be packed: the size the spec's INVALID_VALUE is for.)
+  if (pixel_store_.pack.skip_rows > std::numeric_limits<int>::max() - l.height) return set_error(GL_INVALID_VALUE);
   const InternalFormat& f = l.format;
-  for (std::size_t p = 0; p < out.size(); ++p) {
-    const std::uint32_t* t = &l.texels[4 * p];
-    switch (f.base) {
-      case GL_ALPHA: out[p] = {0, 0, 0, fixed_to_float(t[3], f.alpha)}; break;
-      case GL_LUMINANCE: out[p] = {fixed_to_float(t[0], f.luminance), 0, 0, 1}; break;
-      case GL_LUMINANCE_ALPHA: out[p] = {fixed_to_float(t[0], f.luminance), 0, 0, fixed_to_float(t[3], f.alpha)}; break;
-      case GL_INTENSITY: out[p] = {fixed_to_float(t[0], f.intensity), 0, 0, 1}; break;
-      case GL_DEPTH_COMPONENT: out[p] = {fixed_to_float(t[0], f.depth), 0, 0, 1}; break;
-      case GL_RGB:
-        out[p] = {fixed_to_float(t[0], f.red), fixed_to_float(t[1], f.green), fixed_to_float(t[2], f.blue), 1};
-        break;
-      default:
-        out[p] = {fixed_to_float(t[0], f.red), fixed_to_float(t[1], f.green), fixed_to_float(t[2], f.blue),
-                  fixed_to_float(t[3], f.alpha)};
-        break;
+  std::vector<Rgba> out;
+  for (int first = 0; first < l.height; first += kBandRows) {
+    const int rows = std::min(kBandRows, l.height - first);
+    out.resize(static_cast<std::size_t>(l.width) * static_cast<std::size_t>(rows));
+    const std::size_t texel0 = static_cast<std::size_t>(first) * static_cast<std::size_t>(l.width);
+    for (std::size_t p = 0; p < out.size(); ++p) {
+      double v[4];
+      l.decode(texel0 + p, v);  // R G B A with L and I replicated, D in all four
+      switch (f.base) {
+        case GL_ALPHA: out[p] = {0, 0, 0, v[3]}; break;
+        case GL_LUMINANCE: case GL_INTENSITY: case GL_DEPTH_COMPONENT: out[p] = {v[0], 0, 0, 1}; break;
+        case GL_LUMINANCE_ALPHA: out[p] = {v[0], 0, 0, v[3]}; break;
+        case GL_RGB: out[p] = {v[0], v[1], v[2], 1}; break;
+        default: out[p] = {v[0], v[1], v[2], v[3]}; break;
+      }
     }
+    PixelStore band = pixel_store_.pack;
+    band.skip_rows += first;
+    pack_rgba(out, l.width, rows, format, type, band, pixels);
   }
-  pack_rgba(out, l.width, l.height, format, type, pixel_store_.pack, pixels);
 }
 // ---------------------------------------------------------------- parameters (§3.8.4)
 

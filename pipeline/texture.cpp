@@ -1,6 +1,7 @@
 #include "pipeline/texture.hpp"
 
 #include <algorithm>
+#include <mutex>
 
 #include "pipeline/fixed_point.hpp"
 
@@ -86,77 +87,67 @@ void decode_texel(const InternalFormat& f, const std::uint32_t* t, double* o) {
   }
 }
 
-}  // namespace
-
-const std::vector<double>& TextureLevel::values() const {
-  if (!decoded.empty() || texels.empty()) return decoded;
-  decoded.resize(texels.size());
-  for (std::size_t p = 0; p < texels.size(); p += 4) decode_texel(format, &texels[p], &decoded[p]);
-  return decoded;
+std::mutex& decoding_mutex() {
+  static std::mutex m;
+  return m;
 }
 
-const TextureLevel::ReplaceCodes& TextureLevel::codes_at(const std::array<int, 4>& bits,
-                                                         const RowSplitter* split) const {
-  if (!replace_codes.empty() && replace_codes_bits == bits) return replace_codes;
-  // Straight from the texels (the same reals values() would hold, without keeping them).
-  replace_codes.resize(texels.size());
-  replace_codes_bits = bits;
-  // The texels of rows [first, end) (of height rows of width texels), as `split` chooses.
-  const std::size_t row_values = texels.size() / static_cast<std::size_t>(std::max(height, 1));
-  const auto by_rows = [&](auto&& per_value_range) {
-    const auto rows = [&](int first, int end) {
-      per_value_range(row_values * static_cast<std::size_t>(first), row_values * static_cast<std::size_t>(end));
-    };
-    if (split && height > 1 && row_values * static_cast<std::size_t>(height) == texels.size()) (*split)(height, rows);
-    else per_value_range(std::size_t{0}, texels.size());
-  };
-  auto code_of = [&](const double* o, std::size_t k) {
-    return static_cast<std::uint16_t>(float_to_fixed(o[k], bits[k]));
-  };
-  const InternalFormat& f = format;
+}  // namespace
+
+void TextureLevel::decode(std::size_t index, double* out) const {
+  const std::uint16_t* t = &texels[4 * index];
+  const std::uint32_t codes[4] = {format.base == GL_DEPTH_COMPONENT ? depth_code(index) : t[0], t[1], t[2], t[3]};
+  decode_texel(format, codes, out);
+}
+
+const TexelDecoding* texel_decoding(const InternalFormat& f) {
   const int widest = std::max({f.red, f.green, f.blue, f.alpha, f.luminance, f.intensity, f.depth});
-  const std::size_t count = texels.size() / 4, codes = std::size_t{1} << std::min(widest, 32);
-  if (widest > 16 || count <= codes) {
-    by_rows([&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; p += 4) {
-        double o[4];
-        decode_texel(format, &texels[p], o);
-        for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = code_of(o, k);
-      }
-    });
-    return replace_codes;
-  }
-  // More texels than codes: each output component is a function of one stored component (or
-  // a constant), found by decoding texels with one component set; its results for every code
-  // are tabulated once and read per texel.
+  if (widest > 16) return nullptr;
+  const std::array<int, 8> key{static_cast<int>(f.base), f.red, f.green, f.blue, f.alpha, f.luminance, f.intensity,
+                               f.depth};
+  static std::map<std::array<int, 8>, TexelDecoding> decodings;
+  std::lock_guard<std::mutex> lock(decoding_mutex());
+  auto [it, made] = decodings.try_emplace(key);
+  TexelDecoding& d = it->second;
+  if (!made) return &d;
+  // Each output component is a function of one stored component (or a constant): found by
+  // decoding texels with one component set; then its value for every code, tabulated.
   const std::uint32_t zero[4] = {0, 0, 0, 0};
   double at_zero[4];
-  decode_texel(format, zero, at_zero);
-  std::size_t source[4] = {0, 0, 0, 0};  // a constant output reads any column: all hold it
+  decode_texel(f, zero, at_zero);
   for (std::size_t m = 0; m < 4; ++m) {
     std::uint32_t one[4] = {0, 0, 0, 0};
     one[m] = 1;
     double o[4];
-    decode_texel(format, one, o);
+    decode_texel(f, one, o);
     for (std::size_t k = 0; k < 4; ++k)
-      if (o[k] != at_zero[k]) source[k] = m;
+      if (o[k] != at_zero[k]) d.source[k] = static_cast<std::uint8_t>(m);  // a constant reads any slot: all hold it
   }
-  std::vector<std::array<std::uint16_t, 4>> table(codes);
-  for (std::size_t c = 0; c < codes; ++c) {
-    std::uint32_t t[4];
-    double o[4];
-    for (std::size_t k = 0; k < 4; ++k) {
-      std::fill(t, t + 4, 0u);
-      t[source[k]] = static_cast<std::uint32_t>(c);
-      decode_texel(format, t, o);
-      table[c][k] = code_of(o, k);
+  d.code_bits = widest;
+  const std::size_t codes = std::size_t{1} << widest;
+  d.values.resize(4 * codes);
+  for (std::size_t k = 0; k < 4; ++k)
+    for (std::size_t c = 0; c < codes; ++c) {
+      std::uint32_t t[4] = {0, 0, 0, 0};
+      t[d.source[k]] = static_cast<std::uint32_t>(c);
+      double o[4];
+      decode_texel(f, t, o);
+      d.values[k * codes + c] = o[k];
     }
+  return &d;
+}
+
+const std::vector<std::uint16_t>& TexelDecoding::replace_codes(const std::array<int, 4>& bits) const {
+  std::lock_guard<std::mutex> lock(decoding_mutex());
+  auto [it, made] = replace_codes_.try_emplace(bits);
+  if (made) {
+    const std::size_t codes = std::size_t{1} << code_bits;
+    it->second.resize(values.size());
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t c = 0; c < codes; ++c)
+        it->second[k * codes + c] = static_cast<std::uint16_t>(float_to_fixed(values[k * codes + c], bits[k]));
   }
-  by_rows([&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; p += 4)
-      for (std::size_t k = 0; k < 4; ++k) replace_codes[p + k] = table[texels[p + source[k]] & (codes - 1)][k];
-  });
-  return replace_codes;
+  return it->second;
 }
 
 int TextureLevel::bits_per_texel() const {

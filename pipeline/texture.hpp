@@ -48,33 +48,57 @@ struct InternalFormat {
 // Unsized formats get `unsized_bits` per component (A10: 8).
 std::optional<InternalFormat> internal_format(GLint internalformat, int unsized_bits = 8);
 
+// How a level's stored codes become the values sampling reads, for one internal format whose
+// components are at most 16 bits wide (every colour format; DEPTH_COMPONENT16): output
+// component k (R, G, B, A with L and I replicated, Table 3.18's sources) is
+// values[k << code_bits | code] of the code in slot source[k]. Built once per format and
+// shared by every level of it, so its size does not grow with the textures a trace defines.
+struct TexelDecoding {
+  int code_bits = 0;                    // the widest stored component
+  std::array<std::uint8_t, 4> source{};  // slot of the code output k reads
+  std::vector<double> values;           // 4 << code_bits reals: fixed_to_float of each code
+  // REPLACE's codes (Table 3.18 with A4's rounding: float_to_fixed of the value) at the
+  // fragment widths `bits`, laid out as `values`; made on first use per widths.
+  const std::vector<std::uint16_t>& replace_codes(const std::array<int, 4>& bits) const;
+
+ private:
+  mutable std::map<std::array<int, 4>, std::vector<std::uint16_t>> replace_codes_;
+};
+// The decoding of a format; nullptr when a component is wider than 16 bits (DEPTH24/32),
+// which only the general sampler reads. Thread-safe.
+const TexelDecoding* texel_decoding(const InternalFormat& format);
+
 struct TextureLevel {
   int width = 0, height = 0, border = 0;  // width and height include the border
   InternalFormat format;
-  // 4 codes per texel: R, G, B, A for colour bases; L in [0] (and A in [3]) for
-  // LUMINANCE(_ALPHA); I in [0] for INTENSITY; D in [0] for DEPTH_COMPONENT.
-  std::vector<std::uint32_t, UnsetOnGrowth<std::uint32_t>> texels;
+  // 4 codes per texel, each at its component's width (16 bits hold every colour width):
+  // R, G, B, A for colour bases; L in [0] (and A in [3]) for LUMINANCE(_ALPHA); I in [0] for
+  // INTENSITY. A depth code D wider than 16 bits keeps its low 16 bits in [0] and its high
+  // ones in [1] (depth_code). 8 bytes a texel, where llvmpipe's RGBA8 takes 4.
+  std::vector<std::uint16_t, UnsetOnGrowth<std::uint16_t>> texels;
   bool defined() const { return width > 0 && height > 0; }
-  // The texels as the reals k/(2^bits − 1) sampling reads, R G B A per texel with L and I
-  // replicated (Table 3.18 sources): made on first sampling, dropped when texels change.
-  mutable std::vector<double> decoded;
-  const std::vector<double>& values() const;
-  // The fragment codes each texel's R G B A become at `bits` (float_to_fixed of values()):
-  // what REPLACE writes, for the NEAREST fast path. Made on first use, dropped with decoded.
-  // `split`: the texels converted by ranges of rows as it chooses (every texel alone).
-  using ReplaceCodes = std::vector<std::uint16_t, UnsetOnGrowth<std::uint16_t>>;
-  mutable ReplaceCodes replace_codes;
-  mutable std::array<int, 4> replace_codes_bits{};
-  const ReplaceCodes& codes_at(const std::array<int, 4>& bits, const RowSplitter* split = nullptr) const;
-  void texels_changed() {
-    decoded.clear();
-    replace_codes.clear();
+  // Stores one texel's codes (as texel_codes gives them, each below 2^width).
+  void set_texel(std::size_t index, const std::uint32_t* codes) {
+    std::uint16_t* t = &texels[4 * index];
+    t[0] = static_cast<std::uint16_t>(codes[0] & 0xffffu);
+    t[1] = static_cast<std::uint16_t>(format.base == GL_DEPTH_COMPONENT ? codes[0] >> 16 : codes[1]);
+    t[2] = static_cast<std::uint16_t>(codes[2]);
+    t[3] = static_cast<std::uint16_t>(codes[3]);
   }
+  std::uint32_t depth_code(std::size_t index) const {
+    return static_cast<std::uint32_t>(texels[4 * index]) | static_cast<std::uint32_t>(texels[4 * index + 1]) << 16;
+  }
+  // The texel's components as the reals k/(2^bits − 1) sampling reads, R G B A with L and I
+  // replicated (Table 3.18 sources), by the spec's division: the reference the tables of
+  // TexelDecoding must equal.
+  void decode(std::size_t index, double* out) const;
+  // Dropped caches when texels change (none today: the decoding tables depend on the format).
+  void texels_changed() {}
   int bits_per_texel() const;
-  // What a level of width x height texels holds for the memory budget: its codes (16 bytes a
-  // texel) and the reals and replace codes made from them when it is sampled (32 + 8).
+  // What a level of width x height texels holds for the memory budget: its codes, 8 bytes a
+  // texel (the decoding tables are per format, at most 40 of them).
   static std::uint64_t bytes_for(std::int64_t width, std::int64_t height) {
-    return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * 56u;
+    return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * 8u;
   }
   std::uint64_t bytes() const { return defined() ? bytes_for(width, height) : 0; }
 };

@@ -21,7 +21,6 @@ struct Fetch {
   const TextureObject& tex;
   const TextureLevel& level;
   Counters& counters;
-  const std::vector<double>& values = level.values();
   const int bits = level.bits_per_texel();
 
   // The raw components R, G, B, A (L in r, I in r, D in r) as reals.
@@ -40,9 +39,10 @@ struct Fetch {
     }
     ++counters.texels_fetched;
     counters.texture_bits_read += static_cast<std::uint64_t>(bits);
-    const std::size_t p = 4 * (static_cast<std::size_t>(j + bj) * static_cast<std::size_t>(level.width) +
-                               static_cast<std::size_t>(i + b));
-    return {values[p], values[p + 1], values[p + 2], values[p + 3]};
+    std::array<double, 4> v;
+    level.decode(static_cast<std::size_t>(j + bj) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(i + b),
+                 v.data());
+    return v;
   }
 };
 
@@ -206,9 +206,10 @@ bool texture_needs_lod(const TextureObject& tex) {
   return is_mipmap_filter(tex.min_filter) || tex.min_filter != tex.mag_filter;
 }
 
-LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values) {
+LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims) {
   LevelGeometry l;
-  l.values = with_values ? level.values().data() : nullptr;
+  l.texels = level.texels.data();
+  l.decoding = texel_decoding(level.format);
   l.dims = dims;
   l.width = level.width;
   l.border = level.border;

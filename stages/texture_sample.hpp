@@ -25,19 +25,20 @@ int texture_complete_levels(const TextureObject& tex, int dims);
 bool texture_needs_lod(const TextureObject& tex);
 
 // What the fast paths (TextureStage) need of one level, the same for every fragment of a
-// span: its sizes and border, the wrap modes with CLAMP_TO_EDGE's limits, and (LINEAR) its
-// texel values.
+// span: its sizes and border, the wrap modes with CLAMP_TO_EDGE's limits, its codes and the
+// tables that decode them.
 struct LevelGeometry {
-  const double* values = nullptr;  // TextureLevel::values()
+  const std::uint16_t* texels = nullptr;     // TextureLevel::texels
+  const TexelDecoding* decoding = nullptr;   // texel_decoding (the fast paths need one)
   int dims = 1, width = 0, border = 0, row_border = 0, w = 0, h = 1, bits_per_texel = 0;
   double edge_s = 0.0, edge_t = 0.0;  // CLAMP_TO_EDGE's 1/(2w), 1/(2h)
   GLenum wrap_s = 0, wrap_t = 0;
 };
-LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims, bool with_values = true);
+LevelGeometry level_geometry(const TextureObject& tex, const TextureLevel& level, int dims);
 // NEAREST over a span (§3.8.5, the fast path): each fragment's texel after wrapping
 // (non-finite coordinates at 0, as sample_texture) — always a stored texel, as every wrap mode
-// puts the coordinate in [0, 1] — and of its codes in `codes` (4 per stored texel,
-// TextureLevel::codes_at) those `replace` selects are copied into the fragment. The AVX2
+// puts the coordinate in [0, 1] — and of its REPLACE codes (`codes`: the decoding's
+// replace_codes at the fragment widths) those `replace` selects are copied into the fragment. The AVX2
 // kernel (run-time choice) and the scalar reference give the same codes
 // (`TextureKernels.NearestReplaceAvx2EqualsScalar`).
 void nearest_replace_span(const LevelGeometry& level, const std::uint16_t* codes, const FragmentSpan& span,

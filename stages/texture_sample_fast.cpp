@@ -21,7 +21,7 @@ namespace {
 // texel, the fractions; false when the coordinates are not finite or a texel lies beyond the
 // stored ones (the border colour: the general path). 1D: t01 = t00, t11 = t10, beta = 0.
 struct Footprint {
-  const double *t00, *t10, *t01, *t11;
+  const std::uint16_t *t00, *t10, *t01, *t11;  // the texels' codes
   double alpha, beta;
 };
 inline bool linear_footprint(const LevelGeometry& l, double s, double t, Footprint& f) {
@@ -38,7 +38,7 @@ inline bool linear_footprint(const LevelGeometry& l, double s, double t, Footpri
   if (i[0] < -b || i[1] >= w + b || i[1] < -b || i[0] >= w + b) return false;
   if (dims == 2 && (j[0] < -b || j[1] >= h + b || j[1] < -b || j[0] >= h + b)) return false;
   auto at = [&](int x, int y) {
-    return l.values + 4 * (static_cast<std::size_t>(y + l.row_border) * static_cast<std::size_t>(l.width) +
+    return l.texels + 4 * (static_cast<std::size_t>(y + l.row_border) * static_cast<std::size_t>(l.width) +
                            static_cast<std::size_t>(x + b));
   };
   f.t00 = at(i[0], j[0]);
@@ -78,10 +78,14 @@ template <class Filter>
 std::uint64_t linear_replace_span_scalar(const LevelGeometry& l, const FragmentSpan& span,
                                          const std::array<int, 4>& bits, const std::array<bool, 4>& replace,
                                          std::uint8_t* general, Counters& counters) {
+  const TexelDecoding& d = *l.decoding;
   return for_each_footprint(l, span, general, counters, [&](const Footprint& f, std::uint16_t* c) {
     for (int k = 0; k < 4; ++k) {
-      const double r = l.dims == 2 ? lerp_2d(f.alpha, f.beta, f.t00[k], f.t10[k], f.t01[k], f.t11[k])
-                                   : lerp_1d(f.alpha, f.t00[k], f.t10[k]);
+      // Component k's value of a texel: its table's entry for the code in slot source[k].
+      const double* table = d.values.data() + (static_cast<std::size_t>(k) << d.code_bits);
+      const auto v = [&](const std::uint16_t* texel) { return table[texel[d.source[static_cast<std::size_t>(k)]]]; };
+      const double r = l.dims == 2 ? lerp_2d(f.alpha, f.beta, v(f.t00), v(f.t10), v(f.t01), v(f.t11))
+                                   : lerp_1d(f.alpha, v(f.t00), v(f.t10));
       if (replace[static_cast<std::size_t>(k)]) c[k] = static_cast<std::uint16_t>(float_to_fixed(r, bits[static_cast<std::size_t>(k)]));
     }
   });
@@ -138,6 +142,18 @@ __attribute__((target("avx2"))) inline __m256d load_4(const double* x, int n) {
   return _mm256_load_pd(padded);
 }
 
+// A texel's four values: its codes in the slots the outputs read, each offset to its output's
+// table, gathered (VGATHERDPD) — the reals the scalar loop looks up one by one.
+__attribute__((target("avx2"))) inline __m256d texel_values_4(const std::array<std::uint8_t, 4>& source,
+                                                              const double* tables, __m128i table_offsets,
+                                                              const std::uint16_t* t) {
+  const __m128i codes = _mm_setr_epi32(t[source[0]], t[source[1]], t[source[2]], t[source[3]]);
+  // (The masked form with every lane set: the plain one leaves its source undefined, which
+  // GCC 12 warns of.)
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), tables, _mm_add_epi32(codes, table_offsets), all, 8);
+}
+
 // Lanes whose two indices both lie in [−border, size + border): linear_footprint's test.
 __attribute__((target("avx2"))) inline __m128i stored_4(__m128i lo, __m128i hi, int border, int size) {
   const __m128i first = _mm_set1_epi32(-border - 1), end = _mm_set1_epi32(size + border);
@@ -165,7 +181,12 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
   const bool two = l.dims == 2;
   const __m256d w_size = _mm256_set1_pd(static_cast<double>(l.w)), h_size = _mm256_set1_pd(static_cast<double>(l.h));
   const std::size_t row = static_cast<std::size_t>(l.width);
-  const double* origin = l.values + 4 * (static_cast<std::size_t>(l.row_border) * row + static_cast<std::size_t>(l.border));
+  const std::uint16_t* origin =
+      l.texels + 4 * (static_cast<std::size_t>(l.row_border) * row + static_cast<std::size_t>(l.border));
+  const TexelDecoding& d = *l.decoding;
+  const double* tables = d.values.data();
+  const __m128i table_offsets = _mm_setr_epi32(0, 1 << d.code_bits, 2 << d.code_bits, 3 << d.code_bits);
+
   std::uint64_t filtered = 0;
   for (int i0 = 0; i0 < span.count; i0 += 4) {
     const int n = std::min(4, span.count - i0);
@@ -204,32 +225,34 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
       _mm256_store_pd(w00, not_alpha);
       _mm256_store_pd(w10, alpha);
     }
-    // Byte offsets from `origin` of the four texels, (j·row + i)·32, in 64 bits (VPMULDQ: the
-    // signed 32-bit j times the row length).
+    // Element offsets from `origin` of the four texels' codes, (j·row + i)·4, in 64 bits
+    // (VPMULDQ: the signed 32-bit j times the row length).
     const __m256i row64 = _mm256_set1_epi64x(static_cast<long long>(row));
     const __m256i j0 = _mm256_mul_epi32(_mm256_cvtepi32_epi64(jlo), row64);
     const __m256i j1 = _mm256_mul_epi32(_mm256_cvtepi32_epi64(jhi), row64);
     const __m256i il = _mm256_cvtepi32_epi64(ilo), ih = _mm256_cvtepi32_epi64(ihi);
     alignas(32) std::int64_t o00[4], o10[4], o01[4], o11[4];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(o00), _mm256_slli_epi64(_mm256_add_epi64(j0, il), 5));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(o10), _mm256_slli_epi64(_mm256_add_epi64(j0, ih), 5));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(o01), _mm256_slli_epi64(_mm256_add_epi64(j1, il), 5));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(o11), _mm256_slli_epi64(_mm256_add_epi64(j1, ih), 5));
-    const char* base = reinterpret_cast<const char*>(origin);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o00), _mm256_slli_epi64(_mm256_add_epi64(j0, il), 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o10), _mm256_slli_epi64(_mm256_add_epi64(j0, ih), 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o01), _mm256_slli_epi64(_mm256_add_epi64(j1, il), 2));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(o11), _mm256_slli_epi64(_mm256_add_epi64(j1, ih), 2));
     for (int k = 0; k < n; ++k) {
       const bool ok = (lanes >> k) & 1;
       general[i0 + k] = !ok;
       if (!ok) continue;
-      auto at = [&](const std::int64_t* o) { return reinterpret_cast<const double*>(base + o[k]); };
+      const __m256d v00 = texel_values_4(d.source, tables, table_offsets, origin + o00[k]);
+      const __m256d v10 = texel_values_4(d.source, tables, table_offsets, origin + o10[k]);
       __m256d r;
       if (two) {
-        r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(o00)));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(o10))));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), _mm256_loadu_pd(at(o01))));
-        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), _mm256_loadu_pd(at(o11))));
+        r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), v00);
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), v10));
+        const __m256d v01 = texel_values_4(d.source, tables, table_offsets, origin + o01[k]);
+        const __m256d v11 = texel_values_4(d.source, tables, table_offsets, origin + o11[k]);
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), v01));
+        r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), v11));
       } else {
-        r = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(w00 + k), _mm256_loadu_pd(at(o00))),
-                          _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), _mm256_loadu_pd(at(o10))));
+        r = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(w00 + k), v00),
+                          _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), v10));
       }
       const __m256d x = _mm256_add_pd(_mm256_mul_pd(clamp_nan_low_4(r, zero, one), scale), half);
       // Codes are at most 65535: PACKUSDW keeps them exactly.
@@ -255,6 +278,7 @@ std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& sp
 
 void nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* codes, const FragmentSpan& span,
                                  const std::array<bool, 4>& replace) {
+  const TexelDecoding& d = *l.decoding;
   for (int n = 0; n < span.count; ++n) {
     const double s = std::isfinite(span.s[n]) ? span.s[n] : 0.0;  // as sample_texture
     const double t = std::isfinite(span.t[n]) ? span.t[n] : 0.0;
@@ -262,11 +286,12 @@ void nearest_replace_span_scalar(const LevelGeometry& l, const std::uint16_t* co
     // a stored texel, never the border or the border colour.
     const int i = nearest_index(s, l.wrap_s, l.edge_s, l.w);
     const int j = l.dims == 2 ? nearest_index(t, l.wrap_t, l.edge_t, l.h) : 0;
-    const std::uint16_t* texel = codes + 4 * (static_cast<std::size_t>(j + l.row_border) * static_cast<std::size_t>(l.width) +
-                                              static_cast<std::size_t>(i + l.border));
+    const std::uint16_t* texel =
+        l.texels + 4 * (static_cast<std::size_t>(j + l.row_border) * static_cast<std::size_t>(l.width) +
+                        static_cast<std::size_t>(i + l.border));
     std::uint16_t* c = span.rgba + 4 * n;
-    for (int k = 0; k < 4; ++k)
-      if (replace[static_cast<std::size_t>(k)]) c[k] = texel[k];
+    for (std::size_t k = 0; k < 4; ++k)
+      if (replace[k]) c[k] = codes[(k << d.code_bits) | texel[d.source[k]]];
   }
 }
 
@@ -283,8 +308,10 @@ __attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeomet
   const __m128i w_last = _mm_set1_epi32(l.w - 1), h_last = _mm_set1_epi32(l.h - 1);
   const __m256i row64 = _mm256_set1_epi64x(static_cast<long long>(l.width));
   const std::uint16_t* origin =
-      codes + 4 * (static_cast<std::size_t>(l.row_border) * static_cast<std::size_t>(l.width) +
-                   static_cast<std::size_t>(l.border));
+      l.texels + 4 * (static_cast<std::size_t>(l.row_border) * static_cast<std::size_t>(l.width) +
+                      static_cast<std::size_t>(l.border));
+  const TexelDecoding& d = *l.decoding;
+  const std::size_t bits = static_cast<std::size_t>(d.code_bits);
   for (int i0 = 0; i0 < span.count; i0 += 4) {
     const int n = std::min(4, span.count - i0);
     __m256d s = load_4(span.s + i0, n), t = load_4(span.t + i0, n);
@@ -305,8 +332,12 @@ __attribute__((target("avx2"))) void nearest_replace_span_avx2(const LevelGeomet
                                                           _mm256_cvtepi32_epi64(i)),
                                          2));
     for (int k = 0; k < n; ++k) {
-      std::uint64_t texel = 0;
-      std::memcpy(&texel, origin + offset[k], sizeof texel);
+      // The texel's REPLACE codes, one table entry per component, as one 64-bit word.
+      const std::uint16_t* t = origin + offset[k];
+      const std::uint64_t texel = std::uint64_t{codes[t[d.source[0]]]} |
+                                  std::uint64_t{codes[(1u << bits) | t[d.source[1]]]} << 16 |
+                                  std::uint64_t{codes[(2u << bits) | t[d.source[2]]]} << 32 |
+                                  std::uint64_t{codes[(3u << bits) | t[d.source[3]]]} << 48;
       merge_codes(span.rgba + 4 * (i0 + k), texel, keep);
     }
   }

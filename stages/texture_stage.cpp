@@ -16,22 +16,18 @@ std::uint64_t TextureStage::fast_path_fragments_here() { return fast_path_fragme
 void TextureStage::reset_fast_path_fragments_here() { fast_path_fragments = 0; }
 
 namespace {
-// The NEAREST/REPLACE fast path's condition (it reads TextureLevel::codes_at).
+// The NEAREST/REPLACE fast path's condition (it reads TexelDecoding::replace_codes).
 bool nearest_replace(const TextureObject& tex, const TextureLevel& base, GLenum env_mode) {
   return use_specialised() && tex.min_filter == GL_NEAREST && tex.mag_filter == GL_NEAREST &&
-         env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT;
+         env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT && texel_decoding(base.format);
 }
 }  // namespace
 
-void TextureStage::make_caches(const TextureStageSetup& setup, const RowSplitter* split) {
+void TextureStage::make_caches(const TextureStageSetup& setup, const RowSplitter*) {
   const TextureObject& tex = *setup.texture;
   const TextureLevel& base = tex.levels[static_cast<std::size_t>(tex.base_level)];
-  // The NEAREST fast path reads the codes alone (it never falls back to the general sampler).
-  if (nearest_replace(tex, base, setup.env_mode)) {
-    base.codes_at(setup.fragment_bits, split);
-    return;
-  }
-  for (int level = tex.base_level; level <= setup.last_level; ++level) tex.levels[static_cast<std::size_t>(level)].values();
+  // The tables the fast paths read, made before the lanes start (they are shared).
+  if (const TexelDecoding* d = texel_decoding(base.format)) d->replace_codes(setup.fragment_bits);
 }
 
 void TextureStage::configure(const TextureStageSetup& setup, FragmentSink& next) {
@@ -50,13 +46,12 @@ void TextureStage::configure(const TextureStageSetup& setup, FragmentSink& next)
   // Fast path: NEAREST at every λ on the base level, no comparison, REPLACE. The texel's
   // replacing components become float_to_fixed(texel value) at the fragment's widths
   // (Table 3.18 with A4's rounding), the others stay: the general path's arithmetic with
-  // each texel's result computed once (TextureLevel::codes_at). Every fragment reads a
-  // stored texel (never the border colour): no general fallback, so the level's reals
-  // (TextureLevel::values) are not needed.
+  // each code's result computed once (TexelDecoding::replace_codes). Every fragment reads a
+  // stored texel (never the border colour): no general fallback.
   if (nearest_replace(tex, base, setup_.env_mode)) {
     path_ = Path::kNearestReplace;
-    geometry_ = level_geometry(tex, base, setup_.dims, false);
-    codes_ = base.codes_at(bits).data();
+    geometry_ = level_geometry(tex, base, setup_.dims);
+    codes_ = geometry_.decoding->replace_codes(bits).data();
     return;
   }
   // Fast path: LINEAR for both filters (so λ chooses nothing), no comparison, REPLACE. The
@@ -65,7 +60,7 @@ void TextureStage::configure(const TextureStageSetup& setup, FragmentSink& next)
   // reaches the border colour, or whose coordinates are not finite, take the general path.
   // (Not under A29's 8.8 filter, which the general sampler alone implements.)
   if (use_specialised() && !setup_.filter_8_8 && tex.min_filter == GL_LINEAR && tex.mag_filter == GL_LINEAR &&
-      setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT) {
+      setup_.env_mode == GL_REPLACE && base.format.base != GL_DEPTH_COMPONENT && texel_decoding(base.format)) {
     path_ = Path::kLinearReplace;
     geometry_ = level_geometry(tex, base, setup_.dims);
     return;

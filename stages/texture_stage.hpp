@@ -32,9 +32,10 @@ class TextureStage final : public FragmentSink {
   // that path reads (the level's geometry, its replace codes).
   void configure(const TextureStageSetup& setup, FragmentSink& next);
   void process(FragmentSpan& span) override;
-  // Make the texel caches this setup's sampling reads (TextureLevel::values, codes_at), so
-  // that several threads can then sample the texture without writing to it; `split` makes
-  // the replace codes by ranges of rows (TextureLevel::codes_at).
+  // Make the tables this setup's sampling reads (TexelDecoding's replace codes at the
+  // fragment widths), so that several threads can then sample without building them. They
+  // are per format, at most 4 << 16 entries: `split` is not needed for them (kept for the
+  // callers that offer the lanes).
   static void make_caches(const TextureStageSetup& setup, const RowSplitter* split = nullptr);
   // Fragments the fast paths textured on this thread (for tests; per thread, so that
   // raster lanes do not contend for one counter).

@@ -41,6 +41,25 @@ std::size_t texel_count(const LevelGeometry& l) {
   return static_cast<std::size_t>(l.width) * static_cast<std::size_t>(l.dims == 2 ? l.h + 2 * l.border : 1);
 }
 
+// Formats of every base, with widths from 1 to 16 bits.
+const GLint kFormats[] = {GL_ALPHA8, GL_LUMINANCE8, GL_LUMINANCE12_ALPHA4, GL_INTENSITY12, GL_RGB5, GL_RGBA8,
+                          GL_RGB10_A2, GL_RGBA16, GL_LUMINANCE4, GL_R3_G3_B2, GL_LUMINANCE16_ALPHA16, GL_RGBA2};
+
+// A level of `texels` random codes of a format (each below 2^its width), as TextureLevel
+// stores them.
+TextureLevel random_texels(std::mt19937& rng, GLint internal, std::size_t texels) {
+  TextureLevel level;
+  level.format = *internal_format(internal);
+  const InternalFormat& f = level.format;
+  const int width[4] = {std::max({f.red, f.luminance, f.intensity}), f.green, f.blue, f.alpha};
+  level.texels.resize(4 * texels);
+  for (std::size_t p = 0; p < level.texels.size(); ++p) {
+    const int w = width[p % 4];
+    level.texels[p] = w == 0 ? 0u : static_cast<std::uint16_t>(rng() % (1u << w));
+  }
+  return level;
+}
+
 // Two identical spans of n fragments with random coordinates (some odd) and colours.
 void random_spans(std::mt19937& rng, int n, FragmentSpan& a, FragmentSpan& b) {
   std::uniform_real_distribution<double> coord(-1.5, 2.5);
@@ -62,13 +81,12 @@ void expect_same_spans(int round, int n, const FragmentSpan& a, const FragmentSp
 TEST(TextureKernels, LinearReplaceAvx2EqualsScalar) {
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor: only the scalar reference runs";
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> texel(-0.2, 1.2);
   int compared = 0;
   for (int round = 0; round < 1000; ++round) {
     LevelGeometry l = random_level(rng);
-    std::vector<double> values(4 * texel_count(l));
-    for (double& v : values) v = rng() % 50 == 0 ? kOdd[rng() % std::size(kOdd)] : texel(rng);
-    l.values = values.data();
+    const TextureLevel level = random_texels(rng, kFormats[rng() % std::size(kFormats)], texel_count(l));
+    l.texels = level.texels.data();
+    l.decoding = texel_decoding(level.format);
     const int n = 1 + static_cast<int>(rng() % 40);
     SpanBuffers a(n), b(n);
     FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
@@ -92,9 +110,13 @@ TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
   std::mt19937 rng(23);
   int compared = 0;
   for (int round = 0; round < 1000; ++round) {
-    const LevelGeometry l = random_level(rng);
-    std::vector<std::uint16_t> codes(4 * texel_count(l));
-    for (auto& c : codes) c = static_cast<std::uint16_t>(rng());
+    LevelGeometry l = random_level(rng);
+    const TextureLevel level = random_texels(rng, kFormats[rng() % std::size(kFormats)], texel_count(l));
+    l.texels = level.texels.data();
+    l.decoding = texel_decoding(level.format);
+    const std::array<int, 4> bits{static_cast<int>(1 + rng() % 16), static_cast<int>(1 + rng() % 16),
+                                  static_cast<int>(1 + rng() % 16), static_cast<int>(1 + rng() % 16)};
+    const std::vector<std::uint16_t>& codes = l.decoding->replace_codes(bits);
     const int n = 1 + static_cast<int>(rng() % 40);
     SpanBuffers a(n), b(n);
     FragmentSpan sa = a.span(0, 0, n), sb = b.span(0, 0, n);
@@ -108,57 +130,42 @@ TEST(TextureKernels, NearestReplaceAvx2EqualsScalar) {
   EXPECT_GT(compared, 10000);
 }
 
-TEST(TextureKernels, ReplaceCodesByTableEqualTheDecodedTexels) {
-  // codes_at tabulates per code when a level has more texels than codes: for every base
-  // format, against float_to_fixed of the decoded reals (values()), at fragment widths
-  // narrower, equal and wider than the texel's.
+TEST(TextureKernels, DecodingTablesEqualTheSpecsDivision) {
+  // The fast paths read a texel's values and REPLACE codes from per-format tables
+  // (TexelDecoding); the general sampler decodes each texel by §2.13.9's k / (2^b − 1)
+  // (TextureLevel::decode). For every base format and random texels: the table's value of
+  // each component is the division's, and its REPLACE code is float_to_fixed of it, at
+  // fragment widths narrower, equal and wider than the texel's.
   std::mt19937 rng(29);
-  const GLint formats[] = {GL_ALPHA8, GL_LUMINANCE8, GL_LUMINANCE12_ALPHA4, GL_INTENSITY12, GL_RGB5, GL_RGBA8,
-                           GL_RGB10_A2, GL_RGBA16, GL_LUMINANCE4, GL_R3_G3_B2};
-  for (GLint internal : formats) {
+  for (GLint internal : kFormats) {
+    const TextureLevel level = random_texels(rng, internal, 5000);
+    const TexelDecoding* d = texel_decoding(level.format);
+    ASSERT_NE(d, nullptr) << internal;
     for (const std::array<int, 4>& bits : {std::array<int, 4>{8, 8, 8, 8}, std::array<int, 4>{12, 12, 12, 12},
                                            std::array<int, 4>{5, 6, 5, 1}, std::array<int, 4>{16, 16, 16, 16}}) {
-      TextureLevel level;
-      level.width = 256;
-      level.height = 260;  // 66,560 texels: more than the codes of a 16-bit component
-      level.format = *internal_format(internal);
-      const InternalFormat& f = level.format;
-      const int width[4] = {std::max({f.red, f.luminance, f.intensity}), f.green, f.blue, f.alpha};
-      level.texels.resize(4u * 256u * 260u);
-      for (std::size_t p = 0; p < level.texels.size(); ++p) {
-        const int w = width[p % 4];
-        level.texels[p] = w == 0 ? 0u : static_cast<std::uint32_t>(rng() % (1u << w));
+      const std::vector<std::uint16_t>& replace = d->replace_codes(bits);
+      for (std::size_t p = 0; p < 5000; ++p) {
+        double want[4];
+        level.decode(p, want);
+        for (std::size_t k = 0; k < 4; ++k) {
+          const std::size_t entry = (k << d->code_bits) | level.texels[4 * p + d->source[k]];
+          ASSERT_EQ(d->values[entry], want[k]) << internal << " texel " << p << " component " << k;
+          ASSERT_EQ(replace[entry], float_to_fixed(want[k], bits[k])) << internal << " texel " << p << " component " << k;
+        }
       }
-      const std::vector<double>& values = level.values();
-      const auto& codes = level.codes_at(bits);
-      ASSERT_EQ(values.size(), codes.size());
-      for (std::size_t p = 0; p < codes.size(); ++p)
-        ASSERT_EQ(float_to_fixed(values[p], bits[p % 4]), codes[p]) << internal << " element " << p;
-      // Made by ranges of rows (as the raster lanes make them: here 7 rows at a time, last
-      // range first), the same codes; and likewise for a level of fewer texels than codes,
-      // converted texel by texel.
-      const std::vector<std::uint16_t> whole(codes.begin(), codes.end());
-      const RowSplitter backwards = [](int rows, const std::function<void(int, int)>& body) {
-        for (int first = (rows - 1) / 7 * 7; first >= 0; first -= 7) body(first, std::min(rows, first + 7));
-      };
-      // (The cache's storage is reused unset: poison it, so that codes left from before show.)
-      const auto poison = [&level] {
-        level.replace_codes.assign(level.replace_codes.capacity(), 0xBEEF);
-        level.texels_changed();
-      };
-      poison();
-      const auto& split = level.codes_at(bits, &backwards);
-      ASSERT_TRUE(std::equal(whole.begin(), whole.end(), split.begin(), split.end())) << internal;
-      level.height = 20;  // 5,120 texels
-      level.texels.resize(4u * 256u * 20u);
-      level.texels_changed();
-      const std::vector<std::uint16_t> small_whole(level.codes_at(bits).begin(), level.codes_at(bits).end());
-      poison();
-      const auto& small_split = level.codes_at(bits, &backwards);
-      ASSERT_TRUE(std::equal(small_whole.begin(), small_whole.end(), small_split.begin(), small_split.end()))
-          << internal;
     }
   }
+  // A depth code wider than 16 bits has no table (the general sampler alone reads it) and is
+  // stored in two halves.
+  TextureLevel depth;
+  depth.format = *internal_format(GL_DEPTH_COMPONENT24);
+  EXPECT_EQ(texel_decoding(depth.format), nullptr);
+  depth.texels.resize(4);
+  const std::uint32_t code[4] = {0xABCDEFu, 0, 0, 0};
+  depth.set_texel(0, code);
+  double v[4];
+  depth.decode(0, v);
+  EXPECT_EQ(v[0], static_cast<double>(0xABCDEF) / 16777215.0);
 }
 
 }  // namespace

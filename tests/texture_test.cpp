@@ -1,5 +1,6 @@
 // Texturing with values computed by hand from §3.8 (and ARB/SGIX shadow).
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <optional>
 
@@ -563,4 +564,29 @@ TEST(TextureParameters, FloatEnumsOutOfRangeAreInvalidEnum) {
   GLint level = 0;
   ctx.glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &level);
   EXPECT_EQ(level, 2147483647);
+}
+
+// Issue 21's bar for the memory budget: four 4096² RGBA8 textures, loaded with data, fit in
+// the default 1 GiB beside an 800x600 framebuffer — texels are kept as 16-bit codes (8 bytes
+// a texel: 4 × 128 MiB) and the load's scratch is released between loads. The process's
+// peak resident size stays under the budget too (each test is its own process in ctest).
+TEST(Texture, FourLargeRgba8TexturesFitTheDefaultBudget) {
+  Context ctx{FramebufferConfig{}};
+  constexpr int kSide = 4096;
+  std::vector<GLubyte> image(4u * kSide * kSide);
+  for (std::size_t i = 0; i < image.size(); ++i) image[i] = static_cast<GLubyte>(i * 7 + i / 4096);
+  GLuint names[4];
+  ctx.glGenTextures(4, names);
+  for (GLuint name : names) {
+    ctx.glBindTexture(GL_TEXTURE_2D, name);
+    ctx.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kSide, kSide, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
+    ASSERT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << "texture " << name;
+  }
+  // The last texture's texels read back as given (a spot check of the codes).
+  std::vector<GLubyte> back(image.size());
+  ctx.glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, back.data());
+  EXPECT_TRUE(back == image);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  EXPECT_LT(static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u, std::uint64_t{1} << 30) << "peak resident size";
 }
