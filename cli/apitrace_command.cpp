@@ -49,11 +49,6 @@ bool to_options(const ApitraceCommand& c, ApitraceOptions& o) {
   return true;
 }
 
-void print_summary(const ApitraceReplay& r, const ApitraceCommand& c) {
-  if (c.quiet) return;
-  const std::string skipped = skipped_summary(r);
-  if (!skipped.empty()) std::cerr << "passim: " << skipped;
-}
 }  // namespace
 
 int apitrace_run_command(const ApitraceCommand& c) {
@@ -102,7 +97,6 @@ int apitrace_run_command(const ApitraceCommand& c) {
         std::cout << "  no snapshot taken: choose calls with --snapshot CALLSET (e.g. 'frame') or --snapshot-at flush\n";
     }
   }
-  print_summary(r, c);
   if (r.error) {
     std::cerr << "passim: " << *r.error << "\n";
     return kRunError;
@@ -117,7 +111,6 @@ int apitrace_convert_command(const ApitraceCommand& c) {
   TraceWriter writer(text);
   o.record = &writer;
   ApitraceReplay r = replay_apitrace(c.trace, o);
-  print_summary(r, c);
   if (r.error) {
     std::cerr << "passim: " << *r.error << "\n" << "passim: " << c.pass_out << " not written\n";
     return kRunError;

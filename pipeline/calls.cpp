@@ -91,11 +91,11 @@ std::vector<CallInfo::Param> parse_signature(std::string_view call, std::string_
     p.kind = token[0];
     p.name = token.substr(colon + 1);
     const std::string_view rule = token.substr(1, colon - 1);
-    if (std::strchr("FDIUBHVO", p.kind)) {
+    if (std::strchr("FDIUBGSHVO", p.kind)) {
       if (rule.empty() && p.kind != 'O') bad_row(call, fmt::format("array '{}' has no length rule", p.name));
       p.length = Length::Any;  // refined below, once every name is known
       rules.emplace_back(params.size(), rule);
-    } else if (!rule.empty() || !std::strchr("emnzbiucfdsxy", p.kind)) {
+    } else if (!rule.empty() || !std::strchr("emnzbiucghwfdsxy", p.kind)) {
       bad_row(call, fmt::format("token '{}' is not a scalar or an array", token));
     }
     params.push_back(p);
@@ -173,6 +173,27 @@ CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum
 // A client-array pointer call (§2.8): executed at once, recorded with its data at each draw.
 #define ARRAY_ROW(fn, sig, array) row<&Context::fn>(#fn, sig, kNotCompiled, array)
 
+// The rows of a family member (context.hpp's type lists give name, n, suffix, C type and the
+// scalar and array kinds): the scalar form's signature names its first n parameters from the
+// family's names ("h:x h:y"), the vector form reads n values ("S2:v").
+#define SIGNATURE_1(k, a, ...) #k ":" #a
+#define SIGNATURE_2(k, a, b, ...) SIGNATURE_1(k, a) " " #k ":" #b
+#define SIGNATURE_3(k, a, b, c, ...) SIGNATURE_2(k, a, b) " " #k ":" #c
+#define SIGNATURE_4(k, a, b, c, d) SIGNATURE_3(k, a, b, c) " " #k ":" #d
+#define MEMBER_ROWS(name, n, suffix, kind, Kind, flags, ...)                      \
+  ROW(name##n##suffix, SIGNATURE_##n(kind, __VA_ARGS__), flags),                  \
+  ROW(name##n##suffix##v, #Kind #n ":v", flags),
+#define VERTEX_ROWS(name, n, suffix, T, kind, Kind) MEMBER_ROWS(name, n, suffix, kind, Kind, kInBeginEnd, x, y, z, w)
+#define TEX_COORD_ROWS(name, n, suffix, T, kind, Kind) MEMBER_ROWS(name, n, suffix, kind, Kind, kInBeginEnd, s, t, r, q)
+#define NORMAL_ROWS(name, n, suffix, T, kind, Kind) MEMBER_ROWS(name, n, suffix, kind, Kind, kInBeginEnd, nx, ny, nz)
+#define COLOR_ROWS(name, n, suffix, T, kind, Kind) \
+  MEMBER_ROWS(name, n, suffix, kind, Kind, kInBeginEnd, red, green, blue, alpha)
+#define RASTER_POS_ROWS(name, n, suffix, T, kind, Kind) MEMBER_ROWS(name, n, suffix, kind, Kind, kNone, x, y, z, w)
+// §2.9: the four coordinates, or two corners of two.
+#define RECT_ROWS(name, n, suffix, T, kind, Kind)                                      \
+  ROW(name##suffix, SIGNATURE_4(kind, x1, y1, x2, y2), kQueues | kDraws),              \
+  ROW(name##suffix##v, #Kind "2:v1 " #Kind "2:v2", kQueues | kDraws),
+
 const std::vector<CallInfo>& table() {
   static const std::vector<CallInfo> rows = {
       // errors and state
@@ -232,54 +253,23 @@ const std::vector<CallInfo>& table() {
       ROW(glClipPlane, "e:plane D4:equation", kNone),
       ROW(gluPerspective, "d:fovy d:aspect d:zNear d:zFar", kNone),
       ROW(gluLookAt, "d:eyeX d:eyeY d:eyeZ d:centerX d:centerY d:centerZ d:upX d:upY d:upZ", kNone),
-      // vertices
-      ROW(glRectf, "f:x1 f:y1 f:x2 f:y2", kQueues | kDraws),
-      ROW(glRectd, "d:x1 d:y1 d:x2 d:y2", kQueues | kDraws),
-      ROW(glRecti, "i:x1 i:y1 i:x2 i:y2", kQueues | kDraws),
+      // vertices (§2.6-2.9): Begin and End, then the families of context.hpp, a row for each
+      // member's scalar and vector form from its family's parameter names
       ROW(glBegin, "m:mode", kQueues),
       ROW(glEnd, "", kInBeginEnd | kDraws),
-      ROW(glVertex2f, "f:x f:y", kInBeginEnd),
-      ROW(glVertex3f, "f:x f:y f:z", kInBeginEnd),
-      ROW(glVertex4f, "f:x f:y f:z f:w", kInBeginEnd),
-      ROW(glVertex2d, "d:x d:y", kInBeginEnd),
-      ROW(glVertex3d, "d:x d:y d:z", kInBeginEnd),
-      ROW(glVertex4d, "d:x d:y d:z d:w", kInBeginEnd),
-      ROW(glVertex2i, "i:x i:y", kInBeginEnd),
-      ROW(glVertex3i, "i:x i:y i:z", kInBeginEnd),
-      ROW(glVertex2fv, "F2:v", kInBeginEnd),
-      ROW(glVertex2dv, "D2:v", kInBeginEnd),
-      ROW(glVertex3dv, "D3:v", kInBeginEnd),
-      ROW(glVertex2iv, "I2:v", kInBeginEnd),
-      ROW(glVertex3iv, "I3:v", kInBeginEnd),
-      ROW(glNormal3dv, "D3:v", kInBeginEnd),
-      ROW(glColor3ubv, "B3:v", kInBeginEnd),
-      ROW(glColor4ubv, "B4:v", kInBeginEnd),
-      ROW(glColor3dv, "D3:v", kInBeginEnd),
-      ROW(glColor4dv, "D4:v", kInBeginEnd),
-      ROW(glTexCoord2d, "d:s d:t", kInBeginEnd),
-      ROW(glTexCoord2i, "i:s i:t", kInBeginEnd),
-      ROW(glTexCoord2dv, "D2:v", kInBeginEnd),
-      ROW(glTexCoord3fv, "F3:v", kInBeginEnd),
-      ROW(glTexCoord4fv, "F4:v", kInBeginEnd),
-      ROW(glVertex3fv, "F3:v", kInBeginEnd),
-      ROW(glVertex4fv, "F4:v", kInBeginEnd),
-      ROW(glNormal3f, "f:nx f:ny f:nz", kInBeginEnd),
-      ROW(glNormal3d, "d:nx d:ny d:nz", kInBeginEnd),
-      ROW(glNormal3fv, "F3:v", kInBeginEnd),
-      ROW(glColor3f, "f:red f:green f:blue", kInBeginEnd),
-      ROW(glColor4f, "f:red f:green f:blue f:alpha", kInBeginEnd),
-      ROW(glColor3d, "d:red d:green d:blue", kInBeginEnd),
-      ROW(glColor4d, "d:red d:green d:blue d:alpha", kInBeginEnd),
-      ROW(glColor3ub, "c:red c:green c:blue", kInBeginEnd),
-      ROW(glColor4ub, "c:red c:green c:blue c:alpha", kInBeginEnd),
-      ROW(glColor3fv, "F3:v", kInBeginEnd),
-      ROW(glColor4fv, "F4:v", kInBeginEnd),
-      ROW(glTexCoord1f, "f:s", kInBeginEnd),
-      ROW(glTexCoord2f, "f:s f:t", kInBeginEnd),
-      ROW(glTexCoord3f, "f:s f:t f:r", kInBeginEnd),
-      ROW(glTexCoord4f, "f:s f:t f:r f:q", kInBeginEnd),
-      ROW(glTexCoord4d, "d:s d:t d:r d:q", kInBeginEnd),
-      ROW(glTexCoord2fv, "F2:v", kInBeginEnd),
+      PASSIM_COORDINATE_TYPES(VERTEX_ROWS, glVertex, 2)
+      PASSIM_COORDINATE_TYPES(VERTEX_ROWS, glVertex, 3)
+      PASSIM_COORDINATE_TYPES(VERTEX_ROWS, glVertex, 4)
+      PASSIM_COORDINATE_TYPES(TEX_COORD_ROWS, glTexCoord, 1)
+      PASSIM_COORDINATE_TYPES(TEX_COORD_ROWS, glTexCoord, 2)
+      PASSIM_COORDINATE_TYPES(TEX_COORD_ROWS, glTexCoord, 3)
+      PASSIM_COORDINATE_TYPES(TEX_COORD_ROWS, glTexCoord, 4)
+      PASSIM_NORMAL_TYPES(NORMAL_ROWS, glNormal, 3)
+      PASSIM_COLOR_TYPES(COLOR_ROWS, glColor, 3)
+      PASSIM_COLOR_TYPES(COLOR_ROWS, glColor, 4)
+      ROW(glEdgeFlag, "z:flag", kInBeginEnd),
+      ROW(glEdgeFlagv, "B1:flag", kInBeginEnd),
+      PASSIM_COORDINATE_TYPES(RECT_ROWS, glRect, 2)
       // vertex arrays
       ROW(glEnableClientState, "e:cap", kNotCompiled),
       ROW(glDisableClientState, "e:cap", kNotCompiled),
@@ -287,9 +277,15 @@ const std::vector<CallInfo>& table() {
       ARRAY_ROW(glNormalPointer, "e:type i:stride V*:pointer", GL_NORMAL_ARRAY),
       ARRAY_ROW(glColorPointer, "i:size e:type i:stride V*:pointer", GL_COLOR_ARRAY),
       ARRAY_ROW(glTexCoordPointer, "i:size e:type i:stride V*:pointer", GL_TEXTURE_COORD_ARRAY),
+      ARRAY_ROW(glEdgeFlagPointer, "i:stride B*:pointer", GL_EDGE_FLAG_ARRAY),
+      // Sets several arrays (Table 2.5); recorded as their pointer calls at each draw, with the
+      // enables it changes.
+      ARRAY_ROW(glInterleavedArrays, "e:format i:stride B*:pointer", GL_VERTEX_ARRAY),
       ROW(glArrayElement, "i:i", kInBeginEnd | kReadsArrays),
       ROW(glDrawArrays, "m:mode i:first i:count", kQueues | kDraws | kReadsArrays),
       ROW(glDrawElements, "m:mode i:count e:type V[count]:indices", kQueues | kDraws | kReadsArrays),
+      ROW(glDrawRangeElements, "m:mode u:start u:end i:count e:type V[count]:indices",
+          kQueues | kDraws | kReadsArrays),
       // display lists
       ROW(glNewList, "u:list e:mode", kNotCompiled),
       ROW(glEndList, "", kNotCompiled),
@@ -349,12 +345,9 @@ const std::vector<CallInfo>& table() {
       ROW(glTexGenfv, "e:coord e:pname Fp:params", kNone),
       ROW(glTexGendv, "e:coord e:pname Dp:params", kNone),
       // raster position and pixel rectangles
-      ROW(glRasterPos2i, "i:x i:y", kNone),
-      ROW(glRasterPos2f, "f:x f:y", kNone),
-      ROW(glRasterPos3f, "f:x f:y f:z", kNone),
-      ROW(glRasterPos4f, "f:x f:y f:z f:w", kNone),
-      ROW(glRasterPos2d, "d:x d:y", kNone),
-      ROW(glRasterPos3d, "d:x d:y d:z", kNone),
+      PASSIM_COORDINATE_TYPES(RASTER_POS_ROWS, glRasterPos, 2)
+      PASSIM_COORDINATE_TYPES(RASTER_POS_ROWS, glRasterPos, 3)
+      PASSIM_COORDINATE_TYPES(RASTER_POS_ROWS, glRasterPos, 4)
       ROW(glPixelZoom, "f:xfactor f:yfactor", kNone),
       ROW(glPixelTransferf, "e:pname y:param", kNone),
       ROW(glPixelTransferi, "e:pname x:param", kNone),
@@ -542,6 +535,19 @@ int pname_count(GLenum pname) {
   }
 }
 
+IntegerRange integer_range(char kind) {
+  using L = std::numeric_limits<std::int32_t>;
+  switch (kind) {
+    case 'i': return {L::min(), L::max()};  // GLint
+    case 'x': return {L::min(), std::numeric_limits<std::uint32_t>::max()};  // GLint or an enum
+    case 'c': case 'z': return {0, 255};  // GLubyte, GLboolean
+    case 'g': return {-128, 127};  // GLbyte
+    case 'h': return {-32768, 32767};  // GLshort
+    case 'w': return {0, 65535};  // GLushort
+    default: return {0, std::numeric_limits<std::uint32_t>::max()};  // GLuint, GLenum, GLbitfield
+  }
+}
+
 int type_size(GLenum type) {
   switch (type) {
     case GL_BYTE:
@@ -571,6 +577,9 @@ std::string describe_call(const CallInfo& info) {
       case 'x': return "GLint(or enum)";
       case 'u': return "GLuint";
       case 'c': return "GLubyte";
+      case 'g': return "GLbyte";
+      case 'h': return "GLshort";
+      case 'w': return "GLushort";
       case 'f': return "GLfloat";
       case 'y': return "GLfloat(or enum)";
       case 'd': return "GLdouble";
@@ -580,6 +589,8 @@ std::string describe_call(const CallInfo& info) {
       case 'I': return "const GLint*";
       case 'U': return "const GLuint*";
       case 'B': return "const GLubyte*";
+      case 'G': return "const GLbyte*";
+      case 'S': return "const GLshort*";
       case 'H': return "const GLushort*";
       case 'V': return "const void*";
       case 'O': return "out";
@@ -631,7 +642,10 @@ std::string format_call(const Call& call) {
       case 'b': out += bitfield_name(static_cast<std::uint32_t>(v.i)); break;
       case 'i':
       case 'u':
-      case 'c': out += fmt::format("{}", v.i); break;
+      case 'c':
+      case 'g':
+      case 'h':
+      case 'w': out += fmt::format("{}", v.i); break;
       case 'x': {
         std::string name = v.i > 0xFF ? enum_name(static_cast<std::uint32_t>(v.i)) : "";
         out += (!name.empty() && name[0] == 'G') ? name : fmt::format("{}", v.i);
@@ -682,6 +696,8 @@ GLenum param_element_type(const CallInfo& info, std::size_t index, const std::ve
     case 'I': return GL_INT;
     case 'U': return GL_UNSIGNED_INT;
     case 'B': return GL_UNSIGNED_BYTE;
+    case 'G': return GL_BYTE;
+    case 'S': return GL_SHORT;
     case 'H': return GL_UNSIGNED_SHORT;
     case 'V':
     case 'O':

@@ -39,11 +39,13 @@ struct Value {
 // its kind: "e:target i:level x:internalformat i:width e:format e:type V{image width}:pixels".
 // Scalars:
 //   e enum   m primitive mode   n buffer enum (0 prints GL_NONE)   z GLboolean
-//   b bitfield   i int   u uint   c GLubyte   f float   d double   s string
+//   b bitfield   i int   u uint   c GLubyte   g GLbyte   h GLshort   w GLushort
+//   f float   d double   s string
 //   x int that may hold an enum value   y float that may hold an enum value
 // Arrays (client memory), followed by their length rule:
 //   F const GLfloat*   D const GLdouble*   I const GLint*   U const GLuint*   B const GLubyte*
-//   H const GLushort*   V const void* whose element type is the argument named `type`
+//   G const GLbyte*   S const GLshort*   H const GLushort*
+//   V const void* whose element type is the argument named `type`
 //   O output (queries write it)
 // Length rules:
 //   16               that many elements
@@ -72,7 +74,8 @@ struct CallInfo {
   void (*invoke)(Context&, std::span<const Value>) = nullptr;
   bool returns_value = false;
   bool query = false;  // has output arguments: never recorded or compiled
-  // Client-array pointer calls: the array they set (recorded with its data at each draw); 0 for others.
+  // Client-array pointer calls: the array they set (recorded with its data at each draw;
+  // InterleavedArrays sets several, its row says GL_VERTEX_ARRAY); 0 for others.
   GLenum client_array = 0;
   bool recorded_at_draw() const { return client_array != 0; }
 
@@ -98,6 +101,13 @@ inline constexpr std::uint64_t kOutputScratchElements = 65536;
 // nullptr when no such call is known.
 const CallInfo* find_call(std::string_view name);
 const std::vector<const CallInfo*>& all_calls();
+
+// The values an integer scalar parameter's type holds (kinds e m n b x z i u c g h w): a reader
+// refuses a trace's value outside them rather than let the conversion to the C type wrap it.
+struct IntegerRange {
+  std::int64_t lo = 0, hi = 0;
+};
+IntegerRange integer_range(char kind);
 
 // Number of values an array parameter of a *v call reads for a pname
 // (glLightfv, glMaterialfv, glLightModelfv, glGet*...); 0 if the pname is unknown.

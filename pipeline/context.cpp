@@ -127,9 +127,17 @@ bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values
   if (last_element >= 0 && (sink_ || (compiling_list_ != 0 && info.compiled_into_lists)))
     check_array_bounds(last_element);
   if (sink_ && !info.query && !info.recorded_at_draw()) {
-    // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
-    if (last_element >= 0) record_client_arrays(static_cast<int>(last_element));
-    sink_->on_call(Call{&info, values});
+    if (in_begin_ && info.reads_client_arrays && last_element >= 0) {
+      // §2.6.3: no pointer call may come between Begin and End, so an ArrayElement there is
+      // recorded as the calls it amounts to, as a list compiles it.
+      std::vector<Call> calls;
+      compile_array_element(static_cast<int>(last_element), calls);
+      for (const Call& call : calls) sink_->on_call(call);
+    } else {
+      // Vertex arrays are recorded with the data each draw reads (apitrace does the same).
+      if (last_element >= 0) record_client_arrays(static_cast<int>(last_element));
+      sink_->on_call(Call{&info, values});
+    }
   }
   if (compiling_list_ == 0 || !info.compiled_into_lists) return false;
   const std::size_t compiled_before = compiling_calls_.size();
@@ -226,22 +234,6 @@ void Context::swap_buffers() {
   primitive_setup_valid_ = false;
   if (!fb_.config.double_buffer) return;
   fb_.color[0].rgba = fb_.color[1].rgba;  // the back buffer's content is kept (GLX leaves it undefined)
-}
-
-bool Context::adopt_client_array_data(GLenum array, const void* data, std::size_t bytes) {
-  ClientArray* a = nullptr;
-  switch (array) {
-    case GL_VERTEX_ARRAY: a = &arrays_.vertex; break;
-    case GL_NORMAL_ARRAY: a = &arrays_.normal; break;
-    case GL_COLOR_ARRAY: a = &arrays_.color; break;
-    case GL_TEXTURE_COORD_ARRAY: a = &arrays_.texcoord; break;
-    default: return false;
-  }
-  // A pointer call the GL rejected (§2.5: the command has no effect) left the array as it was,
-  // still reading its earlier data: that data stays the caller's to keep.
-  if (a->pointer != data) return false;
-  a->extent = bytes;
-  return true;
 }
 
 }  // namespace passim

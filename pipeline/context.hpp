@@ -29,6 +29,33 @@
 #include "stages/rasterizer.hpp"
 #include "stages/vertex.hpp"
 
+// §2.7's immediate-mode calls come in families, one member per component count n and type:
+// glVertex{234}{sifd}[v], glTexCoord{1234}{sifd}[v], glNormal3{bsifd}[v], glColor{34}{b s i f d
+// ub us ui}[v], glRasterPos{234}{sifd}[v], glRect{sifd}[v]. A family's types are listed once
+// here, each as M(name, n, suffix, C type, scalar kind, array kind) (the call table's letters,
+// pipeline/calls.hpp), and the members are declared (below), defined (context_vertices.cpp) and
+// given their rows (calls.cpp) from these lists.
+#define PASSIM_COORDINATE_TYPES(M, name, n) \
+  M(name, n, s, GLshort, h, S) M(name, n, i, GLint, i, I) M(name, n, f, GLfloat, f, F) M(name, n, d, GLdouble, d, D)
+#define PASSIM_NORMAL_TYPES(M, name, n) M(name, n, b, GLbyte, g, G) PASSIM_COORDINATE_TYPES(M, name, n)
+#define PASSIM_COLOR_TYPES(M, name, n) \
+  PASSIM_NORMAL_TYPES(M, name, n) M(name, n, ub, GLubyte, c, B) M(name, n, us, GLushort, w, H) M(name, n, ui, GLuint, u, U)
+// A scalar form's parameters and arguments by component count.
+#define PASSIM_COMPONENT_PARAMS_1(T) T a
+#define PASSIM_COMPONENT_PARAMS_2(T) T a, T b
+#define PASSIM_COMPONENT_PARAMS_3(T) T a, T b, T c
+#define PASSIM_COMPONENT_PARAMS_4(T) T a, T b, T c, T d
+#define PASSIM_COMPONENT_ARGS_1 a
+#define PASSIM_COMPONENT_ARGS_2 a, b
+#define PASSIM_COMPONENT_ARGS_3 a, b, c
+#define PASSIM_COMPONENT_ARGS_4 a, b, c, d
+#define PASSIM_DECLARE_SCALAR(name, n, suffix, T, ...) void name##n##suffix(PASSIM_COMPONENT_PARAMS_##n(T));
+#define PASSIM_DECLARE_VECTOR(name, n, suffix, T, ...) void name##n##suffix##v(const T* v);
+#define PASSIM_DECLARE_CALLS(name, n, suffix, T, ...) \
+  PASSIM_DECLARE_SCALAR(name, n, suffix, T) PASSIM_DECLARE_VECTOR(name, n, suffix, T)
+// glRect{sifd}v takes two corners.
+#define PASSIM_DECLARE_RECT_VECTOR(name, n, suffix, T, ...) void name##suffix##v(const T* v1, const T* v2);
+
 namespace passim {
 
 struct FragmentStagesSetup;
@@ -129,53 +156,27 @@ class Context {
   // ---- vertices, Begin/End, rectangles (§2.6-2.9): context_vertices.cpp ----
   void glBegin(GLenum mode);
   void glEnd();
-  void glVertex2f(GLfloat x, GLfloat y);
-  void glVertex3f(GLfloat x, GLfloat y, GLfloat z);
-  void glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w);
-  void glVertex2d(GLdouble x, GLdouble y);
-  void glVertex2i(GLint x, GLint y);
-  void glVertex3i(GLint x, GLint y, GLint z);
+  // §2.7's immediate-mode families, every member in its scalar and vector form (glVertex2s(GLshort,
+  // GLshort) and glVertex2sv(const GLshort*)), declared from the family's types (above the class).
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glVertex, 2)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glVertex, 3)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glVertex, 4)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glTexCoord, 1)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glTexCoord, 2)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glTexCoord, 3)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_CALLS, glTexCoord, 4)
+  PASSIM_NORMAL_TYPES(PASSIM_DECLARE_CALLS, glNormal, 3)
+  PASSIM_COLOR_TYPES(PASSIM_DECLARE_CALLS, glColor, 3)
+  PASSIM_COLOR_TYPES(PASSIM_DECLARE_CALLS, glColor, 4)
+  // §2.6.2: the flag current vertices take (polygon mode LINE and POINT draw the flagged edges).
+  void glEdgeFlag(GLboolean flag);
+  void glEdgeFlagv(const GLboolean* flag);
   // §2.9: Begin(POLYGON), the four corners counter-clockwise from (x1, y1), End.
+  void glRects(GLshort x1, GLshort y1, GLshort x2, GLshort y2);
+  void glRecti(GLint x1, GLint y1, GLint x2, GLint y2);
   void glRectf(GLfloat x1, GLfloat y1, GLfloat x2, GLfloat y2);
   void glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2);
-  void glRecti(GLint x1, GLint y1, GLint x2, GLint y2);
-  void glVertex3d(GLdouble x, GLdouble y, GLdouble z);
-  void glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w);
-  void glVertex2fv(const GLfloat* v);
-  void glVertex3fv(const GLfloat* v);
-  void glVertex4fv(const GLfloat* v);
-  void glNormal3f(GLfloat x, GLfloat y, GLfloat z);
-  void glNormal3d(GLdouble x, GLdouble y, GLdouble z);
-  void glNormal3fv(const GLfloat* v);
-  void glColor3f(GLfloat r, GLfloat g, GLfloat b);
-  void glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a);
-  void glColor3d(GLdouble r, GLdouble g, GLdouble b);
-  void glColor4d(GLdouble r, GLdouble g, GLdouble b, GLdouble a);
-  void glColor3ub(GLubyte r, GLubyte g, GLubyte b);
-  void glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a);
-  void glColor3fv(const GLfloat* v);
-  void glColor4fv(const GLfloat* v);
-  void glTexCoord1f(GLfloat s);
-  void glTexCoord2f(GLfloat s, GLfloat t);
-  void glTexCoord3f(GLfloat s, GLfloat t, GLfloat r);
-  void glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q);
-  void glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q);
-  void glTexCoord2fv(const GLfloat* v);
-  // The vector and integer variants real GL 1.x programs use (replayed from apitrace traces).
-  void glColor3ubv(const GLubyte* v);
-  void glColor4ubv(const GLubyte* v);
-  void glColor3dv(const GLdouble* v);
-  void glColor4dv(const GLdouble* v);
-  void glVertex2dv(const GLdouble* v);
-  void glVertex3dv(const GLdouble* v);
-  void glVertex2iv(const GLint* v);
-  void glVertex3iv(const GLint* v);
-  void glNormal3dv(const GLdouble* v);
-  void glTexCoord2d(GLdouble s, GLdouble t);
-  void glTexCoord2i(GLint s, GLint t);
-  void glTexCoord2dv(const GLdouble* v);
-  void glTexCoord3fv(const GLfloat* v);
-  void glTexCoord4fv(const GLfloat* v);
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_RECT_VECTOR, glRect, 2)
 
   // ---- vertex arrays (§2.8): context_arrays.cpp ----
   void glEnableClientState(GLenum array);
@@ -184,9 +185,13 @@ class Context {
   void glNormalPointer(GLenum type, GLsizei stride, const void* pointer);
   void glColorPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
   void glTexCoordPointer(GLint size, GLenum type, GLsizei stride, const void* pointer);
+  void glEdgeFlagPointer(GLsizei stride, const void* pointer);
+  // Table 2.5's formats: the arrays it enables and their pointers into one block.
+  void glInterleavedArrays(GLenum format, GLsizei stride, const void* pointer);
   void glArrayElement(GLint i);
   void glDrawArrays(GLenum mode, GLint first, GLsizei count);
   void glDrawElements(GLenum mode, GLsizei count, GLenum type, const void* indices);
+  void glDrawRangeElements(GLenum mode, GLuint start, GLuint end, GLsizei count, GLenum type, const void* indices);
 
   // ---- display lists (§5.4): context_lists.cpp ----
   void glNewList(GLuint list, GLenum mode);
@@ -283,6 +288,16 @@ class Context {
   void glRasterPos4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w);
   void glRasterPos2d(GLdouble x, GLdouble y);
   void glRasterPos3d(GLdouble x, GLdouble y, GLdouble z);
+  // The rest of §2.12's family, beside Vertex's in context_vertices.cpp.
+  PASSIM_DECLARE_SCALAR(glRasterPos, 2, s, GLshort)
+  PASSIM_DECLARE_SCALAR(glRasterPos, 3, s, GLshort)
+  PASSIM_DECLARE_SCALAR(glRasterPos, 4, s, GLshort)
+  PASSIM_DECLARE_SCALAR(glRasterPos, 3, i, GLint)
+  PASSIM_DECLARE_SCALAR(glRasterPos, 4, i, GLint)
+  PASSIM_DECLARE_SCALAR(glRasterPos, 4, d, GLdouble)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_VECTOR, glRasterPos, 2)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_VECTOR, glRasterPos, 3)
+  PASSIM_COORDINATE_TYPES(PASSIM_DECLARE_VECTOR, glRasterPos, 4)
   void glPixelZoom(GLfloat xfactor, GLfloat yfactor);
   void glPixelTransferf(GLenum pname, GLfloat param);
   void glPixelTransferi(GLenum pname, GLint param);
@@ -355,9 +370,10 @@ class Context {
   // The colour buffer a name (GL_FRONT/GL_BACK...) reads from; nullptr when absent.
   const ColorPlane* color_buffer(GLenum which) const;
   // The trace replayer tells how many bytes lie behind the data it just gave a pointer call
-  // (for bounds checks). False when the array does not point at that data (the call raised an
-  // error and had no effect), so the replayer keeps the earlier data alive.
-  bool adopt_client_array_data(GLenum array, const void* data, std::size_t bytes);
+  // (for bounds checks): the arrays now pointing into [data, data + bytes) take it as theirs
+  // (a pointer call sets one, InterleavedArrays several) and are returned. None when the call
+  // raised an error and had no effect, so the replayer keeps the earlier data alive.
+  std::vector<GLenum> adopt_client_array_data(const void* data, std::size_t bytes);
   const PixelStore& unpack_store() const { return pixel_store_.unpack; }
   // The texture object bound to a target (GL_TEXTURE_1D/2D); nullptr for another target.
   const TextureObject* bound_texture(GLenum target) const;

@@ -131,6 +131,7 @@ ProcessedVertex Context::transform_vertex(const Vec4& object, const Vec3& normal
   v.normal_eye = light_pending ? n : Vec3(0.0);
   v.material_index = material_index;
   v.light_pending = light_pending;
+  v.edge_flag = current_.edge_flag;
   return v;
 }
 

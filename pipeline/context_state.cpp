@@ -294,6 +294,7 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_COLOR_MATERIAL_FACE: return one(lighting_.color_material_face);
     case GL_COLOR_MATERIAL_PARAMETER: return one(lighting_.color_material_mode);
     case GL_CURRENT_COLOR: return color(current_.color);
+    case GL_EDGE_FLAG: return one(current_.edge_flag);
     case GL_CURRENT_NORMAL: out = {current_.normal.x, current_.normal.y, current_.normal.z}; return true;
     case GL_CURRENT_TEXTURE_COORDS:
       out = {current_.texcoord.s, current_.texcoord.t, current_.texcoord.p, current_.texcoord.q};
@@ -312,6 +313,7 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_NORMAL_ARRAY: return one(arrays_.normal.enabled);
     case GL_COLOR_ARRAY: return one(arrays_.color.enabled);
     case GL_TEXTURE_COORD_ARRAY: return one(arrays_.texcoord.enabled);
+    case GL_EDGE_FLAG_ARRAY: return one(arrays_.edge_flag.enabled);
     default: return false;
   }
 }

@@ -37,68 +37,85 @@ void Context::apply_color_material() {
   }
 }
 
-#define PASSIM_SET_COLOR(r, g, b, a)            \
-  current_.color = Vec4((r), (g), (b), (a));    \
-  apply_color_material();
-
-void Context::glColor3f(GLfloat r, GLfloat g, GLfloat b) { PASSIM_ENTRY(r, g, b) PASSIM_SET_COLOR(r, g, b, 1.0) }
-void Context::glColor4f(GLfloat r, GLfloat g, GLfloat b, GLfloat a) { PASSIM_ENTRY(r, g, b, a) PASSIM_SET_COLOR(r, g, b, a) }
-void Context::glColor3d(GLdouble r, GLdouble g, GLdouble b) { PASSIM_ENTRY(r, g, b) PASSIM_SET_COLOR(r, g, b, 1.0) }
-void Context::glColor4d(GLdouble r, GLdouble g, GLdouble b, GLdouble a) { PASSIM_ENTRY(r, g, b, a) PASSIM_SET_COLOR(r, g, b, a) }
-// Table 2.6: unsigned bytes map to c / 255.
-void Context::glColor3ub(GLubyte r, GLubyte g, GLubyte b) {
-  PASSIM_ENTRY(r, g, b)
-  PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, 1.0)
+namespace {
+// §2.7: a vertex or texture coordinate set of n components, the rest from (0, 0, 0, 1);
+// integers are converted directly.
+template <class T>
+Vec4 coordinates(const T* v, int n) {
+  Vec4 out(0.0, 0.0, 0.0, 1.0);
+  for (int k = 0; k < n; ++k) out[k] = static_cast<double>(v[k]);
+  return out;
 }
-void Context::glColor4ub(GLubyte r, GLubyte g, GLubyte b, GLubyte a) {
-  PASSIM_ENTRY(r, g, b, a)
-  PASSIM_SET_COLOR(r / 255.0, g / 255.0, b / 255.0, a / 255.0)
+// §2.7: colour and normal components by Table 2.6; a three-component colour has alpha 1.
+template <class T>
+Vec4 normalized(const T* v, int n) {
+  Vec4 out(0.0, 0.0, 0.0, 1.0);
+  for (int k = 0; k < n; ++k) out[k] = normalized_component(v[k]);
+  return out;
 }
-void Context::glColor3fv(const GLfloat* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
-void Context::glColor3ubv(const GLubyte* v) {
-  PASSIM_ENTRY(v)
-  PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, 1.0)
-}
-void Context::glColor4ubv(const GLubyte* v) {
-  PASSIM_ENTRY(v)
-  PASSIM_SET_COLOR(v[0] / 255.0, v[1] / 255.0, v[2] / 255.0, v[3] / 255.0)
-}
-void Context::glColor3dv(const GLdouble* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], 1.0) }
-void Context::glColor4dv(const GLdouble* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
-void Context::glColor4fv(const GLfloat* v) { PASSIM_ENTRY(v) PASSIM_SET_COLOR(v[0], v[1], v[2], v[3]) }
-#undef PASSIM_SET_COLOR
+}  // namespace
 
-void Context::glNormal3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
-void Context::glNormal3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) current_.normal = Vec3(x, y, z); }
-void Context::glNormal3fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.normal = Vec3(v[0], v[1], v[2]); }
-void Context::glNormal3dv(const GLdouble* v) { PASSIM_ENTRY(v) current_.normal = Vec3(v[0], v[1], v[2]); }
+// The members of the families (context.hpp): the scalar form gathers its components into v,
+// and both forms then do `apply`, which reads v's n components.
+#define PASSIM_DEFINE_SCALAR(name, n, suffix, T, apply)                 \
+  void Context::name##n##suffix(PASSIM_COMPONENT_PARAMS_##n(T)) {        \
+    PASSIM_ENTRY(PASSIM_COMPONENT_ARGS_##n)                             \
+    const T v[] = {PASSIM_COMPONENT_ARGS_##n};                          \
+    apply;                                                              \
+  }
+#define PASSIM_DEFINE_VECTOR(name, n, suffix, T, apply) \
+  void Context::name##n##suffix##v(const T* v) {        \
+    PASSIM_ENTRY(v)                                     \
+    apply;                                              \
+  }
+#define PASSIM_DEFINE_CALLS(name, n, suffix, T, apply) \
+  PASSIM_DEFINE_SCALAR(name, n, suffix, T, apply) PASSIM_DEFINE_VECTOR(name, n, suffix, T, apply)
 
-void Context::glTexCoord1f(GLfloat s) { PASSIM_ENTRY(s) current_.texcoord = Vec4(s, 0.0, 0.0, 1.0); }
-void Context::glTexCoord2f(GLfloat s, GLfloat t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
-void Context::glTexCoord3f(GLfloat s, GLfloat t, GLfloat r) { PASSIM_ENTRY(s, t, r) current_.texcoord = Vec4(s, t, r, 1.0); }
-void Context::glTexCoord4f(GLfloat s, GLfloat t, GLfloat r, GLfloat q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
-void Context::glTexCoord4d(GLdouble s, GLdouble t, GLdouble r, GLdouble q) { PASSIM_ENTRY(s, t, r, q) current_.texcoord = Vec4(s, t, r, q); }
-void Context::glTexCoord2fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
-void Context::glTexCoord3fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], v[2], 1.0); }
-void Context::glTexCoord4fv(const GLfloat* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], v[2], v[3]); }
-void Context::glTexCoord2d(GLdouble s, GLdouble t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
-void Context::glTexCoord2i(GLint s, GLint t) { PASSIM_ENTRY(s, t) current_.texcoord = Vec4(s, t, 0.0, 1.0); }
-void Context::glTexCoord2dv(const GLdouble* v) { PASSIM_ENTRY(v) current_.texcoord = Vec4(v[0], v[1], 0.0, 1.0); }
-// ---------------------------------------------------------------- vertices and primitives
+#define PASSIM_VERTEX(name, n, suffix, T, ...) PASSIM_DEFINE_CALLS(name, n, suffix, T, submit_vertex(coordinates(v, n)))
+PASSIM_COORDINATE_TYPES(PASSIM_VERTEX, glVertex, 2)
+PASSIM_COORDINATE_TYPES(PASSIM_VERTEX, glVertex, 3)
+PASSIM_COORDINATE_TYPES(PASSIM_VERTEX, glVertex, 4)
 
-void Context::glVertex2f(GLfloat x, GLfloat y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
-void Context::glVertex3f(GLfloat x, GLfloat y, GLfloat z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
-void Context::glVertex4f(GLfloat x, GLfloat y, GLfloat z, GLfloat w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
-void Context::glVertex2d(GLdouble x, GLdouble y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
-void Context::glVertex3d(GLdouble x, GLdouble y, GLdouble z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
-void Context::glVertex4d(GLdouble x, GLdouble y, GLdouble z, GLdouble w) { PASSIM_ENTRY(x, y, z, w) submit_vertex(Vec4(x, y, z, w)); }
-void Context::glVertex2dv(const GLdouble* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3dv(const GLdouble* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
-void Context::glVertex2iv(const GLint* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3iv(const GLint* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
-void Context::glVertex2i(GLint x, GLint y) { PASSIM_ENTRY(x, y) submit_vertex(Vec4(x, y, 0.0, 1.0)); }
-void Context::glVertex3i(GLint x, GLint y, GLint z) { PASSIM_ENTRY(x, y, z) submit_vertex(Vec4(x, y, z, 1.0)); }
+#define PASSIM_TEX_COORD(name, n, suffix, T, ...) \
+  PASSIM_DEFINE_CALLS(name, n, suffix, T, current_.texcoord = coordinates(v, n))
+PASSIM_COORDINATE_TYPES(PASSIM_TEX_COORD, glTexCoord, 1)
+PASSIM_COORDINATE_TYPES(PASSIM_TEX_COORD, glTexCoord, 2)
+PASSIM_COORDINATE_TYPES(PASSIM_TEX_COORD, glTexCoord, 3)
+PASSIM_COORDINATE_TYPES(PASSIM_TEX_COORD, glTexCoord, 4)
 
+#define PASSIM_NORMAL(name, n, suffix, T, ...) \
+  PASSIM_DEFINE_CALLS(name, n, suffix, T, current_.normal = Vec3(normalized(v, n)))
+PASSIM_NORMAL_TYPES(PASSIM_NORMAL, glNormal, 3)
+
+// §2.13.3: with COLOR_MATERIAL on, the new colour also sets the tracked material.
+#define PASSIM_COLOR(name, n, suffix, T, ...) \
+  PASSIM_DEFINE_CALLS(name, n, suffix, T, current_.color = normalized(v, n); apply_color_material())
+PASSIM_COLOR_TYPES(PASSIM_COLOR, glColor, 3)
+PASSIM_COLOR_TYPES(PASSIM_COLOR, glColor, 4)
+
+// §2.12: RasterPos takes its coordinates as Vertex does. The position's rules and the family's
+// first members are in context_pixels.cpp; the others are made here, beside Vertex's.
+#define PASSIM_RASTER_POS(name, n, suffix, T, ...) set_raster_position(coordinates(v, n))
+#define PASSIM_RASTER_POS_VECTOR(name, n, suffix, T, ...) \
+  PASSIM_DEFINE_VECTOR(name, n, suffix, T, PASSIM_RASTER_POS(name, n, suffix, T))
+#define PASSIM_RASTER_POS_SCALAR(name, n, suffix, T) \
+  PASSIM_DEFINE_SCALAR(name, n, suffix, T, PASSIM_RASTER_POS(name, n, suffix, T))
+PASSIM_COORDINATE_TYPES(PASSIM_RASTER_POS_VECTOR, glRasterPos, 2)
+PASSIM_COORDINATE_TYPES(PASSIM_RASTER_POS_VECTOR, glRasterPos, 3)
+PASSIM_COORDINATE_TYPES(PASSIM_RASTER_POS_VECTOR, glRasterPos, 4)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 2, s, GLshort)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 3, s, GLshort)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 4, s, GLshort)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 3, i, GLint)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 4, i, GLint)
+PASSIM_RASTER_POS_SCALAR(glRasterPos, 4, d, GLdouble)
+
+// §2.6.2: the flag is stored; each vertex takes the current one (ProcessedVertex::edge_flag).
+void Context::glEdgeFlag(GLboolean flag) { PASSIM_ENTRY(flag) current_.edge_flag = flag != GL_FALSE; }
+void Context::glEdgeFlagv(const GLboolean* flag) { PASSIM_ENTRY(flag) current_.edge_flag = flag[0] != GL_FALSE; }
+
+// §2.9: Rect(x1, y1, x2, y2) is Begin(POLYGON) Vertex2(x1, y1) Vertex2(x2, y1) Vertex2(x2, y2)
+// Vertex2(x1, y2) End. Every type's coordinates are exact as doubles.
 void Context::glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2) {
   PASSIM_ENTRY(x1, y1, x2, y2)
   glBegin(GL_POLYGON);
@@ -108,14 +125,14 @@ void Context::glRectd(GLdouble x1, GLdouble y1, GLdouble x2, GLdouble y2) {
   glVertex2d(x1, y2);
   glEnd();
 }
-// Float and integer coordinates are exact as doubles.
-void Context::glRectf(GLfloat x1, GLfloat y1, GLfloat x2, GLfloat y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
-void Context::glRecti(GLint x1, GLint y1, GLint x2, GLint y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
-
-void Context::glVertex2fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], 0.0, 1.0)); }
-void Context::glVertex3fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], 1.0)); }
-void Context::glVertex4fv(const GLfloat* v) { PASSIM_ENTRY(v) submit_vertex(Vec4(v[0], v[1], v[2], v[3])); }
-
+#define PASSIM_RECT_SCALAR(suffix, T) \
+  void Context::glRect##suffix(T x1, T y1, T x2, T y2) { PASSIM_ENTRY(x1, y1, x2, y2) glRectd(x1, y1, x2, y2); }
+PASSIM_RECT_SCALAR(s, GLshort)
+PASSIM_RECT_SCALAR(i, GLint)
+PASSIM_RECT_SCALAR(f, GLfloat)
+#define PASSIM_RECT_VECTOR(name, n, suffix, T, ...) \
+  void Context::name##suffix##v(const T* v1, const T* v2) { PASSIM_ENTRY(v1, v2) glRectd(v1[0], v1[1], v2[0], v2[1]); }
+PASSIM_COORDINATE_TYPES(PASSIM_RECT_VECTOR, glRect, 2)
 
 void Context::glBegin(GLenum mode) {
   PASSIM_ENTRY(mode)

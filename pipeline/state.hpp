@@ -37,6 +37,7 @@ struct CurrentState {
   Vec4 color{1.0, 1.0, 1.0, 1.0};
   Vec3 normal{0.0, 0.0, 1.0};
   Vec4 texcoord{0.0, 0.0, 0.0, 1.0};
+  bool edge_flag = true;  // §2.6.2
 };
 
 struct Material {
@@ -159,6 +160,7 @@ struct ClientArray {
 
 struct ClientArrayState {
   ClientArray vertex, normal, color, texcoord;
+  ClientArray edge_flag{false, 1, GL_UNSIGNED_BYTE};  // §2.8: one GLboolean an element
 };
 
 }  // namespace passim

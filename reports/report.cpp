@@ -51,6 +51,12 @@ nlohmann::json run_report(const ReplayResult& run, const std::string& trace_name
     errors.push_back({{"call", e.call}, {"error", enum_name(e.error)}, {"where", e.where}});
   j["gl_errors"] = errors;
   j["warnings"] = ctx.warnings();
+  // The calls the replay did not run (queries; in an apitrace replay also what passim does
+  // not model), as the replay printed them; "first": the call number or trace line.
+  json skipped = json::array();
+  for (const SkippedCall& c : run.skipped)
+    skipped.push_back({{"call", c.name}, {"count", c.count}, {"first", c.first_call}, {"why", c.why}});
+  j["skipped_calls"] = skipped;
   return j;
 }
 

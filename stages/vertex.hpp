@@ -17,6 +17,8 @@ struct ProcessedVertex {
   Vec3 normal_eye{0.0};
   std::uint32_t material_index = 0;
   bool light_pending = false;
+  // §2.6.2: whether the edge starting at this vertex is a boundary edge (polygon mode LINE, POINT).
+  bool edge_flag = true;
 };
 
 }  // namespace passim

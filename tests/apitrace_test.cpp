@@ -649,6 +649,62 @@ TEST(ApitraceReplayErrors, UnsupportedCallsAreSummarisedOrFatalWhenStrict) {
   EXPECT_NE(r.error->find("call 1: glFrobnicateEXT is not modelled"), std::string::npos) << *r.error;
 }
 
+// The §2.7 variants apitrace records (signed bytes as SINT/UINT, arrays of shorts) are replayed,
+// not skipped; what is skipped is summarised one line per call on the diagnostics stream.
+TEST(ApitraceReplayErrors, IntegerVariantsReplayAndSkippedCallsAreOneLineEach) {
+  StreamBuilder s;
+  s.header();
+  s.enter_new(0, "glViewport", {"x", "y", "width", "height"});
+  for (int k = 0; k < 4; ++k) s.byte(1), s.uint(static_cast<std::uint64_t>(k)), s.byte(4), s.uint(k < 2 ? 0 : 8);
+  s.byte(0);
+  s.leave(0);
+  s.enter_new(1, "glColor3b", {"red", "green", "blue"});
+  s.byte(1), s.uint(0), s.byte(3), s.uint(128);  // -128
+  s.byte(1), s.uint(1), s.byte(4), s.uint(127);
+  s.byte(1), s.uint(2), s.byte(4), s.uint(0);
+  s.byte(0);
+  s.leave(1);
+  s.enter_new(2, "glNormal3sv", {"v"});
+  s.byte(1), s.uint(0), s.byte(0x0b), s.uint(3);  // an array of three
+  s.byte(3), s.uint(32768), s.byte(4), s.uint(32767), s.byte(4), s.uint(0);
+  s.byte(0);
+  s.leave(2);
+  s.enter_new(3, "glFrobnicateEXT", {});
+  s.byte(0);
+  s.leave(3);
+  s.enter(3);
+  s.byte(0);
+  s.leave(4);
+  s.enter_new(4, "glGetError", {});
+  s.byte(0);
+  s.leave(5);
+  s.enter_new(5, "glIsFrobnicatedEXT", {});
+  s.byte(0);
+  s.leave(6);
+  std::ostringstream diagnostics;
+  ApitraceOptions o;
+  o.diagnostics = &diagnostics;
+  std::istringstream in(s.file());
+  const ApitraceReplay r = replay_apitrace(in, "v.trace", o);
+  ASSERT_FALSE(r.error) << *r.error;
+  GLdouble colour[4], normal[3];
+  r.result.context->glGetDoublev(GL_CURRENT_COLOR, colour);
+  r.result.context->glGetDoublev(GL_CURRENT_NORMAL, normal);
+  // Table 2.6: (2c + 1) / (2^b − 1).
+  EXPECT_DOUBLE_EQ(colour[0], -1.0);
+  EXPECT_DOUBLE_EQ(colour[1], 1.0);
+  EXPECT_DOUBLE_EQ(colour[2], 1.0 / 255.0);
+  EXPECT_DOUBLE_EQ(normal[0], -1.0);
+  EXPECT_DOUBLE_EQ(normal[1], 1.0);
+  EXPECT_DOUBLE_EQ(normal[2], 1.0 / 65535.0);
+  EXPECT_EQ(diagnostics.str(),
+            "passim: skipped 2 calls of glFrobnicateEXT (not modelled by passim)\n"
+            "passim: skipped 1 call of glIsFrobnicatedEXT (a query: no effect on the image)\n");
+  EXPECT_EQ(skipped_summary(r), diagnostics.str());
+  ASSERT_EQ(r.result.skipped.size(), 2u);
+  EXPECT_EQ(r.result.skipped[0].first_call, 3u);
+}
+
 // A call recorded with another signature than GL's: a message with its number, exit 1.
 TEST(ApitraceReplayErrors, WrongSignatureNamesTheCall) {
   StreamBuilder s;

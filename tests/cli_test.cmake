@@ -48,6 +48,18 @@ if(NOT counters MATCHES "GL_INVALID_ENUM")
 endif()
 expect_exit(1 run ${WORK}/glerr.pass --out ${WORK}/o4 --strict)
 
+# Skipped calls (a .pass trace's queries): one line each on stderr, and in counters.json.
+file(WRITE ${WORK}/query.pass "passim-trace 1\n@framebuffer 4x4\nglGetIntegerv(GL_VIEWPORT, {})\n"
+     "glGetIntegerv(GL_VIEWPORT, {})\n@output c\n")
+expect_exit(0 run ${WORK}/query.pass --out ${WORK}/oq)
+if(NOT LAST_ERR MATCHES "passim: skipped 2 calls of glGetIntegerv \\(a query: its output cannot be replayed\\)\n")
+  message(FATAL_ERROR "skipped calls not summarised: ${LAST_ERR}")
+endif()
+file(READ ${WORK}/oq/counters.json counters)
+if(NOT counters MATCHES "\"skipped_calls\"" OR NOT counters MATCHES "glGetIntegerv")
+  message(FATAL_ERROR "skipped calls not in counters.json: ${counters}")
+endif()
+
 # --expect mismatch exits 3.
 file(WRITE ${WORK}/wrong.json "{\"total\": {\"fragments_generated\": 1}}")
 expect_exit(3 run ${SRC}/traces/masked-multipass.pass --out ${WORK}/o5 --expect ${WORK}/wrong.json)
@@ -210,6 +222,9 @@ endif()
 # same image hash; bad input exits 1 naming the call and keeps the snapshots taken before it.
 set(AT ${SRC}/tests/data/apitrace)
 expect_exit(0 run ${AT}/blend_masks.trace --snapshot frame --out ${WORK}/at1 --profile mesa-llvmpipe)
+if(NOT LAST_ERR MATCHES "passim: skipped 1 call of glReadPixels \\(a query: no effect on the image\\)")
+  message(FATAL_ERROR "the apitrace replay's skipped calls are not summarised: ${LAST_ERR}")
+endif()
 file(GLOB at1_png ${WORK}/at1/*.png)
 list(LENGTH at1_png at1_count)
 if(NOT at1_count EQUAL 1 OR NOT EXISTS ${WORK}/at1/counters.json)

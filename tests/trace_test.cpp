@@ -70,6 +70,72 @@ TEST(TraceParse, ErrorsNameTheLine) {
                5, "reads element 2 of the vertex array, but only 16 bytes were given");
   expect_error(h + "glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, {0, 1})\n", 3, "(indices) needs 3 values, the trace gives 2");
   expect_error(h + "glColor4ub(256, 0, 0, 0)\n", 3, "argument 1 (256) is out of range");
+  // Each integer type's own range (GLbyte, GLshort, GLushort), in scalars and arrays.
+  expect_error(h + "glColor3b(0, 128, 0)\n", 3, "argument 2 (128) is out of range");
+  expect_error(h + "glColor3b(-129, 0, 0)\n", 3, "argument 1 (-129) is out of range");
+  expect_error(h + "glVertex2s(0, 32768)\n", 3, "argument 2 (32768) is out of range");
+  expect_error(h + "glColor3us(65536, 0, 0)\n", 3, "argument 1 (65536) is out of range");
+  expect_error(h + "glColor3us(-1, 0, 0)\n", 3, "argument 1 (-1) is out of range");
+  expect_error(h + "glNormal3bv({0, 0, 200})\n", 3, "array element 3 '200' is not a valid GL_BYTE");
+  expect_error(h + "glVertex3sv({0, -40000, 0})\n", 3, "array element 2 '-40000' is not a valid GL_SHORT");
+  expect_error(h + "glTexCoord4sv({1, 2, 3})\n", 3, "needs 4 values, the trace gives 3");
+  expect_error(h + "glRectsv({0, 0}, {1})\n", 3, "(v2) needs 2 values, the trace gives 1");
+  expect_error(h + "glInterleavedArrays(GL_V2F, 0, {0, 0})\nglDrawArrays(GL_POINTS, 0, 1)\n", 4,
+               "reads element 0 of the vertex array, but only 2 bytes were given");
+}
+
+// The variants added for §2.7 (byte, short, unsigned short and unsigned int components, every
+// size, scalar and vector) parse, draw what their float forms draw, and record as they were
+// written (the recorder's text replays to the same image).
+TEST(TraceParse, EveryIntegerTypeAndSizeParsesAndRecords) {
+  const std::string h = std::string("passim-trace 1\n@framebuffer 8x8 color=8 depth=0 stencil=0 accum=0 double=no\n") +
+                        "glMatrixMode(GL_PROJECTION)\nglOrtho(0, 8, 0, 8, -1, 1)\nglMatrixMode(GL_MODELVIEW)\n";
+  const std::string floats = h +
+      "glBegin(GL_TRIANGLES)\nglColor3f(1, 0, 1)\nglNormal3f(0, 0, 1)\nglTexCoord2f(1, 2)\nglVertex2f(0, 0)\n"
+      "glColor4f(0, 1, 1, 1)\nglVertex3f(8, 0, 0)\nglColor3f(1, 1, 0)\nglVertex4f(0, 8, 0, 1)\nglEnd()\n"
+      "glRectf(6, 6, 8, 8)\nglRasterPos2f(1, 1)\n@output img color\n";
+  const std::string integers = h +
+      "glBegin(GL_TRIANGLES)\nglColor3b(127, -128, 127)\nglNormal3s(0, 0, 32767)\nglTexCoord2s(1, 2)\nglVertex2s(0, 0)\n"
+      "glColor4usv({0, 65535, 65535, 65535})\nglVertex3sv({8, 0, 0})\nglColor3ui(4294967295, 4294967295, 0)\n"
+      "glVertex4i(0, 8, 0, 1)\nglEnd()\nglRectsv({6, 6}, {8, 8})\nglRasterPos2s(1, 1)\n@output img color\n";
+  const ReplayResult a = replay(floats), b = replay(integers);
+  ASSERT_EQ(a.images.size(), 1u);
+  ASSERT_EQ(b.images.size(), 1u);
+  EXPECT_EQ(a.images[0].codes, b.images[0].codes);
+  EXPECT_TRUE(b.context->error_log().empty());
+  ReplayOptions options;
+  std::ostringstream text;
+  TraceWriter writer(text);
+  options.record = &writer;
+  const ReplayResult c = replay(integers, options);
+  const std::string recorded = text.str();
+  for (const char* line : {"glColor3b(127, -128, 127)", "glNormal3s(0, 0, 32767)", "glTexCoord2s(1, 2)",
+                           "glColor4usv({0, 65535, 65535, 65535})", "glVertex3sv({8, 0, 0})",
+                           "glColor3ui(4294967295, 4294967295, 0)", "glRectsv({6, 6}, {8, 8})", "glRasterPos2s(1, 1)"})
+    EXPECT_NE(recorded.find(line), std::string::npos) << line << " in\n" << recorded;
+  EXPECT_EQ(replay(recorded).images[0].codes, a.images[0].codes);
+}
+
+// Item 5 of issue 20: a replay names every call it skipped, once per name, on its diagnostics
+// stream and in counters.json. In a .pass trace those are queries (their output cannot be
+// replayed).
+TEST(TraceParse, SkippedCallsAreSummarisedOneLineEach) {
+  const std::string text = std::string(kHeader) + "glGetIntegerv(GL_VIEWPORT, {})\nglClear(GL_COLOR_BUFFER_BIT)\n"
+                                                  "glGetIntegerv(GL_VIEWPORT, {})\nglGetFloatv(GL_CURRENT_COLOR, {})\n";
+  ReplayOptions options;
+  std::ostringstream diagnostics;
+  options.diagnostics = &diagnostics;
+  const ReplayResult r = replay(text, options);
+  EXPECT_EQ(diagnostics.str(),
+            "passim: skipped 2 calls of glGetIntegerv (a query: its output cannot be replayed)\n"
+            "passim: skipped 1 call of glGetFloatv (a query: its output cannot be replayed)\n");
+  ASSERT_EQ(r.skipped.size(), 2u);
+  EXPECT_EQ(r.skipped[0].first_call, 3u);  // the line
+  const nlohmann::json report = run_report(r, "t.pass", {});
+  ASSERT_EQ(report["skipped_calls"].size(), 2u);
+  EXPECT_EQ(report["skipped_calls"][0]["call"], "glGetIntegerv");
+  EXPECT_EQ(report["skipped_calls"][0]["count"], 2);
+  EXPECT_EQ(report["skipped_calls"][1]["first"], 6);
 }
 
 TEST(TraceParse, AcceptsApitraceDumpShapes) {

@@ -84,12 +84,17 @@ class ApitraceReplayer {
     } catch (const std::exception& e) {  // any other failure still names the call
       out_.error = fmt::format("{}: call {}: {}", name_, out_.calls, e.what());
     }
+    auto by_first_call = [](const SkippedCall& a, const SkippedCall& b) { return a.first_call < b.first_call; };
     for (auto* list : {&unsupported_, &ignored_}) {
       auto& target = list == &unsupported_ ? out_.unsupported : out_.ignored;
       for (auto& [fn, skipped] : *list) target.push_back(skipped);
-      std::sort(target.begin(), target.end(),
-                [](const SkippedCall& a, const SkippedCall& b) { return a.first_call < b.first_call; });
+      std::sort(target.begin(), target.end(), by_first_call);
     }
+    std::vector<SkippedCall>& all = out_.result.skipped;
+    all = out_.unsupported;
+    all.insert(all.end(), out_.ignored.begin(), out_.ignored.end());
+    std::sort(all.begin(), all.end(), by_first_call);
+    if (options_.diagnostics) *options_.diagnostics << skipped_lines(all);
     return std::move(out_);
   }
 
@@ -150,12 +155,10 @@ class ApitraceReplayer {
     if (fn == "glXChooseVisual" || fn == "glXChooseFBConfig" || fn == "glXChooseFBConfigSGIX") {
       if (call.args.size() < 3 || !call.args[2]) stop(call, fmt::format("{} without its attribute list", fn));
       if (!out_.result.context) visual_ = parse_attributes(call, *call.args[2], fn == "glXChooseVisual");
-      skip(ignored_, call, "window system: sets the visual");
       return;
     }
     if (fn == "glXSwapBuffers") {
-      ++out_.frames;
-      skip(ignored_, call, "window system: ends a frame (the back buffer is copied to the front)");
+      ++out_.frames;  // the back buffer is copied to the front
       if (!out_.result.context) return;
       out_.result.context->swap_buffers();
       if (options_.record) options_.record->swap();
@@ -281,14 +284,12 @@ class ApitraceReplayer {
     const RecordedValue* a = &*call.args[k];
     if (a->kind == Kind::Repr && a->items.size() == 2) a = &a->items[1];
     switch (p.kind) {
-      case 'e': case 'm': case 'n': case 'b': case 'x': case 'z': case 'i': case 'u': case 'c': {
+      case 'e': case 'm': case 'n': case 'b': case 'x': case 'z': case 'i': case 'u': case 'c': case 'g': case 'h':
+      case 'w': {
         if (!a->is_integer()) return bad("is not an integer or enum");
         const std::int64_t x = a->as_integer();
-        // GLint may be negative; GLenum, GLbitfield, GLuint, GLboolean and GLubyte may not.
-        const std::int64_t lo = p.kind == 'i' || p.kind == 'x' ? std::numeric_limits<std::int32_t>::min() : 0;
-        const std::int64_t hi = p.kind == 'c' ? 255 : p.kind == 'z' ? 255 : p.kind == 'i' ? std::numeric_limits<std::int32_t>::max()
-                                                                       : std::numeric_limits<std::uint32_t>::max();
-        if (x < lo || x > hi) return bad(fmt::format("= {} is out of its type's range", x));
+        const IntegerRange range = integer_range(p.kind);
+        if (x < range.lo || x > range.hi) return bad(fmt::format("= {} is out of its type's range", x));
         v.i = x;
         return v;
       }
@@ -397,15 +398,7 @@ ApitraceReplay replay_apitrace(const std::filesystem::path& file, const Apitrace
   return replay_apitrace(in, file.string(), options);
 }
 
-std::string skipped_summary(const ApitraceReplay& replay) {
-  std::string text;
-  if (!replay.unsupported.empty()) {
-    text += "calls passim did not replay (not modelled):\n";
-    for (const SkippedCall& s : replay.unsupported)
-      text += fmt::format("  {:<32} {:>8} x, first at call {}\n", s.name, s.count, s.first_call);
-  }
-  return text;
-}
+std::string skipped_summary(const ApitraceReplay& replay) { return skipped_lines(replay.result.skipped); }
 
 bool looks_like_apitrace(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);

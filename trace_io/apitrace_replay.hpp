@@ -28,24 +28,17 @@ struct ApitraceOptions {
   std::optional<CallSet> snapshot;  // calls after which the draw buffer is captured
   bool snapshot_at_flush = false;   // ... and after every glFlush / glFinish
   bool strict = false;              // an unsupported call or a GL error ends the replay
-  std::ostream* diagnostics = nullptr;  // GL errors as they happen
+  std::ostream* diagnostics = nullptr;  // GL errors as they happen, the skipped calls at the end
   TraceWriter* record = nullptr;        // write the replay as a canonical .pass (passim convert)
   std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
   Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
-};
-
-// A call passim did not replay, once per name.
-struct SkippedCall {
-  std::string name;
-  std::uint64_t count = 0;
-  std::uint64_t first_call = 0;
-  std::string why;
 };
 
 struct ApitraceReplay {
   ReplayResult result;  // images: the snapshots, named by call number ("0000000042")
   std::uint64_t calls = 0;   // calls read
   std::uint64_t frames = 0;  // glXSwapBuffers seen
+  // Both also in result.skipped (in call order):
   std::vector<SkippedCall> unsupported;  // calls whose effect passim does not model
   std::vector<SkippedCall> ignored;      // queries and window-system calls: no effect on the image
   std::optional<std::string> error;      // the replay stopped here (the message names the call)
@@ -56,7 +49,7 @@ struct ApitraceReplay {
 ApitraceReplay replay_apitrace(const std::filesystem::path& file, const ApitraceOptions& options);
 ApitraceReplay replay_apitrace(std::istream& in, const std::string& name, const ApitraceOptions& options);
 
-// The summary printed after a replay: the skipped calls, one line each.
+// The summary printed after a replay: the skipped calls, one line each (skipped_lines).
 std::string skipped_summary(const ApitraceReplay& replay);
 
 // True when the file starts like an apitrace trace (snappy "at" or gzip).

@@ -56,8 +56,8 @@ void CallRunner::run(const CallInfo& info, const std::vector<Value>& values, con
   if (info.recorded_at_draw()) {
     const Value& data = values.back();
     const void* pointer = data.bytes ? static_cast<const void*>(data.bytes->data()) : nullptr;
-    if (ctx_.adopt_client_array_data(info.client_array, pointer, data.bytes ? data.bytes->size() : 0))
-      keep_alive_[info.client_array] = data.bytes;  // the array's previous data is no longer read
+    for (GLenum array : ctx_.adopt_client_array_data(pointer, data.bytes ? data.bytes->size() : 0))
+      keep_alive_[array] = data.bytes;  // the array's previous data is no longer read
   }
   report_errors();
 }

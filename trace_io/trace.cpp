@@ -1,6 +1,8 @@
 // .pass traces: parsing, replay and writing (docs/trace-format.md).
 #include "trace_io/trace.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -379,6 +381,7 @@ class Replayer {
     }
     ensure_context();
     result_.context->check_balance();
+    if (options_.diagnostics) *options_.diagnostics << skipped_lines(result_.skipped);
     return std::move(result_);
   }
 
@@ -613,16 +616,13 @@ class Replayer {
         else fail(fmt::format("{}: argument {} must be GL_TRUE or GL_FALSE, not '{}'", info.name, index + 1, t));
         return v;
       }
-      case 'i': case 'u': case 'c': {
+      case 'i': case 'u': case 'c': case 'g': case 'h': case 'w': {
         need_expr();
         if (a.terms.size() != 1) fail(fmt::format("{}: argument {} must be a whole number", info.name, index + 1));
         auto n = parse_number<std::int64_t>(a.terms[0]);
         if (!n) fail(fmt::format("{}: argument {}: '{}' is not a whole number", info.name, index + 1, a.terms[0]));
-        const std::int64_t lo = p.kind == 'i' ? std::numeric_limits<std::int32_t>::min() : 0;
-        const std::int64_t hi = p.kind == 'i'   ? std::numeric_limits<std::int32_t>::max()
-                                : p.kind == 'c' ? 255
-                                                : std::numeric_limits<std::uint32_t>::max();
-        const bool ok = *n >= lo && *n <= hi;
+        const IntegerRange range = integer_range(p.kind);
+        const bool ok = *n >= range.lo && *n <= range.hi;
         if (!ok) fail(fmt::format("{}: argument {} ({}) is out of range", info.name, index + 1, *n));
         v.i = *n;
         return v;
@@ -731,11 +731,20 @@ class Replayer {
     std::vector<Value> values;
     for (std::size_t k = 0; k < args.size(); ++k) values.push_back(convert(args[k], info->params[k], *info, k, values));
     ensure_context();
+    if (info->query) skip(fn, "a query: its output cannot be replayed");
     try {
       runner_->run(*info, values, fmt::format("{}:{}", name_, line_));
     } catch (const CallRejected& e) {
       fail(e.what());
     }
+  }
+
+  void skip(const std::string& fn, const char* why) {
+    auto it = std::find_if(result_.skipped.begin(), result_.skipped.end(),
+                           [&](const SkippedCall& c) { return c.name == fn; });
+    if (it == result_.skipped.end())
+      it = result_.skipped.insert(it, SkippedCall{fn, 0, static_cast<std::uint64_t>(line_), why});
+    ++it->count;
   }
 
   void report_errors() {
@@ -787,6 +796,13 @@ ReplayResult replay_trace(const std::filesystem::path& file, const ReplayOptions
   if (!in || !in.read(text.data(), static_cast<std::streamsize>(size)))
     throw TraceError(file.string(), 0, "cannot read the trace file");
   return replay_trace_text(text, file.string(), file.parent_path(), options);
+}
+
+std::string skipped_lines(const std::vector<SkippedCall>& skipped) {
+  std::string text;
+  for (const SkippedCall& s : skipped)
+    text += fmt::format("passim: skipped {} call{} of {} ({})\n", s.count, s.count == 1 ? "" : "s", s.name, s.why);
+  return text;
 }
 
 // ------------------------------------------------------------------ writing

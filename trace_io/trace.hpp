@@ -51,7 +51,7 @@ struct CapturedImage {
 struct ReplayOptions {
   bool strict = false;           // a GL error ends the replay (TraceError)
   class TraceWriter* record = nullptr;  // re-record every call (canonical form)
-  std::ostream* diagnostics = nullptr;  // GL errors reported here as they happen
+  std::ostream* diagnostics = nullptr;  // GL errors reported here as they happen; the skipped calls at the end
   std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
   // Folders besides the trace's own that side files may come from (side_files.hpp).
   std::vector<std::filesystem::path> allow_files;
@@ -62,10 +62,23 @@ struct ReplayOptions {
   int window_limit = 0;
 };
 
+// A call a replay did not run, once per name: its count, where it was first (an apitrace call
+// number, a .pass line) and why.
+struct SkippedCall {
+  std::string name;
+  std::uint64_t count = 0;
+  std::uint64_t first_call = 0;
+  std::string why;
+};
+// One line per skipped call, as every replay prints them at its end:
+// "passim: skipped 12 calls of glFooBar (not modelled by passim)".
+std::string skipped_lines(const std::vector<SkippedCall>& skipped);
+
 struct ReplayResult {
   TraceSettings settings;
   std::unique_ptr<Context> context;
   std::vector<CapturedImage> images;
+  std::vector<SkippedCall> skipped;  // in the order first met; counters.json's "skipped_calls"
 };
 
 // Replays a .pass file. Throws TraceError (with file:line) for malformed input,
