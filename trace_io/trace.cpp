@@ -218,7 +218,15 @@ struct Cursor {
           if (hi < 0 || lo < 0) throw std::runtime_error("a \\x escape takes two hex digits, e.g. \\x0a");
           out += static_cast<char>(hi * 16 + lo);
           pos += 2;
-        } else out += e;
+        } else if (e == '"' || e == '\\') {
+          out += e;
+        } else {
+          // docs/trace-format.md names the escapes; any other is a malformed string, not a
+          // character silently dropped or kept.
+          throw std::runtime_error(fmt::format("unknown escape '\\{}' in a string (the escapes are \\\" \\\\ \\n \\t \\xHH)",
+                                               std::isprint(static_cast<unsigned char>(e)) ? std::string(1, e)
+                                                                                           : fmt::format("x{:02x}", static_cast<unsigned char>(e))));
+        }
       } else {
         out += c;
       }
