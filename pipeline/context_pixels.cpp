@@ -559,30 +559,46 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
     warn_once("glDrawPixels with GL_COLOR_INDEX is not modelled yet: ignored");
     return;
   }
-  if (format == GL_STENCIL_INDEX) {
-    if (!raster_.valid || width == 0 || height == 0 || !pixels) return;
-    if (!rectangle_fits_in_memory(width, height)) return;
-    std::vector<double> indices;
-    unpack_indices(pixels, width, height, format, type, pixel_store_.unpack, indices);
-    transfer_stencil(indices, transfer_, counters());
-    draw_stencil_rectangle(width, height, indices);
-    return;
-  }
-  if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format != GL_STENCIL_INDEX && format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format))
+    return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   if (!raster_.valid || width == 0 || height == 0 || !pixels) return;  // §3.6.4: invalid raster position: nothing
-  if (!rectangle_fits_in_memory(width, height)) return;
-  if (format == GL_DEPTH_COMPONENT) {
+  // Work proportional to what is drawn (issue 21), as glCopyPixels: only the groups that can
+  // land in the window are unpacked, transferred and placed — where the whole image would place
+  // them. The sub-image is the same memory entered further on (§3.6.4): SKIP_PIXELS and SKIP_ROWS
+  // grow by the groups and rows left out, the row length stays the image's. Not with a
+  // convolution, histogram or minmax, which see the whole image.
+  int first_column = 0, first_row = 0, w = width, h = height;
+  PixelStore store = pixel_store_.unpack;
+  if (!is_color_pixel_format(format) ||
+      (!active_convolution(transfer_, 2) && !transfer_.histogram.enabled && !transfer_.minmax.enabled)) {
+    const auto [c0, c1] = visible_groups(round_half_up(raster_.window.x), zoom_x_, width, fb_.width());
+    const auto [r0, r1] = visible_groups(round_half_up(raster_.window.y), zoom_y_, height, fb_.height());
+    if (c1 <= c0 || r1 <= r0) return;
+    constexpr std::int64_t kIntMax = std::numeric_limits<int>::max();
+    if (std::int64_t{store.skip_pixels} + c0 <= kIntMax && std::int64_t{store.skip_rows} + r0 <= kIntMax) {
+      if (store.row_length == 0) store.row_length = width;
+      store.skip_pixels += c0, store.skip_rows += r0;
+      first_column = c0, first_row = r0, w = c1 - c0, h = r1 - r0;
+    }
+  }
+  if (!rectangle_fits_in_memory(w, h)) return;
+  if (format == GL_STENCIL_INDEX) {
+    std::vector<double> indices;
+    unpack_indices(pixels, w, h, format, type, store, indices);
+    transfer_stencil(indices, transfer_, counters());
+    draw_stencil_rectangle(w, h, indices, first_column, first_row);
+  } else if (format == GL_DEPTH_COMPONENT) {
     std::vector<double> depth;
-    unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
+    unpack_depth(pixels, w, h, type, store, depth);
     transfer_depth(depth, transfer_);
-    draw_pixel_rectangle(width, height, nullptr, &depth);
+    draw_pixel_rectangle(w, h, nullptr, &depth, first_column, first_row);
   } else {
     std::vector<Rgba> rgba;
-    unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
-    int w = width, h = height;  // a REDUCE convolution shrinks the image
+    unpack_rgba(pixels, w, h, format, type, store, rgba);
+    // A REDUCE convolution shrinks the image (never clipped: first_column = first_row = 0).
     if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), counters()) && w > 0 && h > 0)
-      draw_pixel_rectangle(w, h, &rgba, nullptr);
+      draw_pixel_rectangle(w, h, &rgba, nullptr, first_column, first_row);
   }
 }
 

@@ -737,3 +737,29 @@ TEST(Pixels, HugeCopyPixelsIsClippedToTheWindowBeforeAnythingIsRead) {
   for (int x = 2; x < 6; ++x) EXPECT_EQ(pixel(ctx, x, 1)[0], 0u) << "x " << x;
   EXPECT_EQ(pixel(ctx, 1, 1)[0], 8u);
 }
+
+// glDrawPixels unpacks only the groups that can land in the window, entering the image further
+// on (§3.6.4: SKIP_PIXELS grows, the row length stays the image's). A 5x2 image of RGBA bytes
+// with SKIP_PIXELS 1 (row length = width 5), red = 10 + k for memory group k: group (i, j) is
+// memory group 5j + 1 + i, and lands on (−2 + i, j); i = 2..4 are in the window.
+TEST(Pixels, DrawPixelsPartlyOutsideTheWindowReadsTheSameGroups) {
+  Context ctx(test::small_config(6, 6));
+  test::window_projection(ctx);
+  std::vector<GLubyte> image(11 * 4, 255);
+  for (int k = 0; k < 11; ++k) image[static_cast<std::size_t>(4 * k)] = static_cast<GLubyte>(10 + k);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glBitmap(0, 0, 0, 0, -2, 0, nullptr);  // the raster position moves to x = −2, still valid
+  ctx.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  ctx.glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
+  const Counters before = ctx.total_counters();
+  ctx.glDrawPixels(5, 2, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const unsigned row0[4] = {13, 14, 15, 0}, row1[4] = {18, 19, 20, 0};
+  for (int x = 0; x < 4; ++x) {
+    EXPECT_EQ(pixel(ctx, x, 0)[0], row0[x]) << "x " << x;
+    EXPECT_EQ(pixel(ctx, x, 1)[0], row1[x]) << "x " << x;
+  }
+  const Counters after = ctx.total_counters();
+  EXPECT_EQ(after.fragments_generated - before.fragments_generated, 6u);
+  EXPECT_LT(after.pixels_drawn - before.pixels_drawn, 10u);  // not all 5x2 groups were unpacked
+}

@@ -415,6 +415,10 @@ class Replayer {
 
   void ensure_context() {
     if (result_.context) return;
+    // The context is made at the first call; what its settings get wrong is the header's
+    // (the last header directive's line), not that call's.
+    const int call_line = line_;
+    if (header_line_ > 0) line_ = header_line_;
     TraceSettings& s = result_.settings;
     const MachineProfile* profile = find_profile(profile_name_);
     if (!profile) fail(fmt::format("unknown machine profile '{}' (see 'passim info')", profile_name_));
@@ -438,6 +442,7 @@ class Replayer {
     } catch (const BudgetExceeded& e) {
       fail(e.what());
     }
+    line_ = call_line;
     result_.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
     if (options_.record) {
@@ -449,7 +454,8 @@ class Replayer {
   void apply_framebuffer_setting(FramebufferConfig& f, const std::string& key, const std::string& value) {
     auto integer = [&](const std::string& v) {
       auto n = parse_number<std::int64_t>(v);
-      if (!n || *n < 0 || *n > 1000000) fail(fmt::format("@framebuffer {}={}: expected a whole number", key, v));
+      if (!n || *n < 0 || *n > 1000000)
+        fail(fmt::format("@framebuffer {}={}: expected a whole number from 0 to 1000000", key, v));
       return static_cast<int>(*n);
     };
     if (key == "size") {
@@ -496,6 +502,7 @@ class Replayer {
       return words;
     };
     const bool header = d == "profile" || d == "framebuffer" || d == "subpixel";
+    if (header) header_line_ = line_;
     if (header && result_.context) fail(fmt::format("@{} must come before the first GL call", d));
     std::vector<std::string> w = rest_words();
     if (d == "profile") {
@@ -780,6 +787,7 @@ class Replayer {
   SideFiles side_files_;
   ReplayOptions options_;
   int line_ = 0;
+  int header_line_ = 0;  // the last @profile, @framebuffer or @subpixel
   std::string profile_name_ = "ideal";
   std::map<std::string, std::string> fb_overrides_;
   int subpixel_ = -1;
