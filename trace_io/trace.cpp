@@ -705,7 +705,9 @@ class Replayer {
         fail(fmt::format("side file '{}' holds {} bytes, not a whole number of {}-byte elements", a.text, raw.size(),
                          size));
       bytes->resize(raw.size());
-      std::memcpy(bytes->data(), raw.data(), raw.size());
+      // An empty file (or a /proc file, which states a size of 0) leaves data() null, which
+      // memcpy may not be given even for 0 bytes (UBSan, hostile case proc_self_allowed).
+      if (!raw.empty()) std::memcpy(bytes->data(), raw.data(), raw.size());
       v.count = raw.size() / static_cast<std::size_t>(size);
     } else if (a.kind == Arg::Array) {
       bytes->resize(a.count * static_cast<std::size_t>(size));
