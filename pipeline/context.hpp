@@ -595,7 +595,10 @@ class Context {
   void set_convolution_parameter(GLenum target, GLenum pname, const double* v);
   // Rasterizes a pixel rectangle at the raster position with the zoom rule; colours from
   // `rgba` (after transfer) or, for depth rectangles, the raster colour with `depth` values.
-  void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth);
+  // first_column, first_row: where the rectangle starts in the one the call named (a copy
+  // clipped to the window, visible_groups); its groups are placed as that one's.
+  void draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba, const std::vector<double>* depth,
+                            int first_column = 0, int first_row = 0);
   // A20: the window pixels a width x height rectangle drawn at the raster position with the
   // pixel zoom covers. The columns are the same in every row: window column x_first + c shows
   // source column source_column[c] (increasing x; contiguous, since the groups tile
@@ -606,7 +609,7 @@ class Context {
     bool identity = false;  // source_column[c] == c for every source column (zoom 1, all inside)
     std::vector<std::array<int, 2>> rows;
   };
-  RectanglePlacement place_rectangle(int width, int height) const;
+  RectanglePlacement place_rectangle(int width, int height, int first_column = 0, int first_row = 0) const;
   // Rows [first_row, first_row + rows) of a rectangle placed by `placement`; `rgba` or `depth`
   // holds those rows' values (width per row). `raster` comes from prepare_rectangle_fragments,
   // called once per rectangle (it configures the fragment stages).
@@ -651,7 +654,8 @@ class Context {
                                const FragmentStagesSetup* setup, const TransferredBandUse& use);
   // §4.3.1: stencil indices written at the rectangle's pixels through the scissor test and the
   // stencil writemask only.
-  void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices);
+  void draw_stencil_rectangle(int width, int height, const std::vector<double>& indices, int first_column = 0,
+                              int first_row = 0);
   void read_framebuffer_stencil(int x, int y, int width, int height, std::vector<double>& out) const;
 
   MemoryBudget memory_;  // before fb_: the planes are charged before they are allocated

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "client/glu_mipmaps.hpp"
@@ -259,7 +260,26 @@ void Context::glBitmap(GLsizei width, GLsizei height, GLfloat xorig, GLfloat yor
   raster_.window.y += ymove;
 }
 
-Context::RectanglePlacement Context::place_rectangle(int width, int height) const {
+namespace {
+
+// The groups [first, end) of a rectangle `count` groups long (A20: group i covers
+// [r + z·i, r + z·(i+1)), mirrored for z < 0) that can hold the centre of a pixel of [0, limit):
+// those meeting [0, limit], solved for i and widened by one group each way (the placement
+// decides exactly). Every group when the zoom or the rounded raster position r is not a finite
+// number and the zoom not zero: nothing is clipped then.
+std::pair<int, int> visible_groups(double r, double z, int count, int limit) {
+  if (!std::isfinite(r) || !std::isfinite(z) || z == 0.0) return {0, count};
+  double a = -r / z, b = (limit - r) / z;
+  if (a > b) std::swap(a, b);
+  const double n = static_cast<double>(count);
+  const int first = static_cast<int>(std::clamp(std::floor(a) - 1.0, 0.0, n));
+  const int end = static_cast<int>(std::clamp(std::ceil(b) + 1.0, static_cast<double>(first), n));
+  return {first, end};
+}
+
+}  // namespace
+
+Context::RectanglePlacement Context::place_rectangle(int width, int height, int first_column, int first_row) const {
   // A20: the raster position is rounded (⌊x + ½⌋), then group (i, j) covers
   // [x + zx·i, x + zx·(i+1)) × [y + zy·j, y + zy·(j+1)); a fragment is produced for each pixel
   // whose centre lies inside or on the bottom/left boundary.
@@ -282,13 +302,15 @@ Context::RectanglePlacement Context::place_rectangle(int width, int height) cons
   const int xr_int = static_cast<int>(std::clamp(xr, -1.0e9, 1.0e9));
   for (int step = 0; step < width; ++step) {
     const int i = zx >= 0 ? step : width - 1 - step;
+    const double g = static_cast<double>(first_column) + i;  // the group's index in the whole rectangle
     int lo, hi;
     if (zx == 1.0) {
       // Zoom 1: group i covers [xr + i, xr + i + 1), whose only centre is pixel xr + i.
-      lo = hi = xr_int + i;
-      if (lo < 0 || lo >= fb_.width()) continue;
+      const std::int64_t x = std::int64_t{xr_int} + first_column + i;
+      if (x < 0 || x >= fb_.width()) continue;
+      lo = hi = static_cast<int>(x);
     } else {
-      pixel_range(xr + zx * i, xr + zx * (i + 1), fb_.width(), lo, hi);
+      pixel_range(xr + zx * g, xr + zx * (g + 1.0), fb_.width(), lo, hi);
     }
     for (int x = lo; x <= hi; ++x) {
       if (placement.source_column.empty()) placement.x_first = x;
@@ -302,15 +324,17 @@ Context::RectanglePlacement Context::place_rectangle(int width, int height) cons
   placement.rows.resize(static_cast<std::size_t>(height));
   for (int j = 0; j < height; ++j) {
     std::array<int, 2>& r = placement.rows[static_cast<std::size_t>(j)];
-    pixel_range(yr + zy * j, yr + zy * (j + 1), fb_.height(), r[0], r[1]);
+    const double g = static_cast<double>(first_row) + j;
+    pixel_range(yr + zy * g, yr + zy * (g + 1.0), fb_.height(), r[0], r[1]);
   }
   return placement;
 }
 
 void Context::draw_pixel_rectangle(int width, int height, const std::vector<Rgba>* rgba,
-                                   const std::vector<double>* depth) {
+                                   const std::vector<double>* depth, int first_column, int first_row) {
   counters().pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  draw_pixel_rows(prepare_rectangle_fragments(), place_rectangle(width, height), width, 0, height,
+  draw_pixel_rows(prepare_rectangle_fragments(), place_rectangle(width, height, first_column, first_row), width, 0,
+                  height,
                   rgba ? rgba->data() : nullptr, depth ? depth->data() : nullptr);
 }
 
@@ -486,10 +510,11 @@ void Context::transfer_bands_on_lanes(const SourceCodes& source, int width, int 
   });
 }
 
-void Context::draw_stencil_rectangle(int width, int height, const std::vector<double>& indices) {
+void Context::draw_stencil_rectangle(int width, int height, const std::vector<double>& indices, int first_column,
+                                     int first_row) {
   Counters& c = counters();
   c.pixels_drawn += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  const RectanglePlacement placement = place_rectangle(width, height);
+  const RectanglePlacement placement = place_rectangle(width, height, first_column, first_row);
   const int bits = fb_.config.stencil_bits;
   const auto mask = static_cast<std::uint8_t>(fb_control_.stencil_writemask & max_code(bits));
   // §4.3.1: pixel ownership (the window) and the scissor test only; no fragment is produced.
@@ -534,30 +559,46 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
     warn_once("glDrawPixels with GL_COLOR_INDEX is not modelled yet: ignored");
     return;
   }
-  if (format == GL_STENCIL_INDEX) {
-    if (!raster_.valid || width == 0 || height == 0 || !pixels) return;
-    if (!rectangle_fits_in_memory(width, height)) return;
-    std::vector<double> indices;
-    unpack_indices(pixels, width, height, format, type, pixel_store_.unpack, indices);
-    transfer_stencil(indices, transfer_, counters());
-    draw_stencil_rectangle(width, height, indices);
-    return;
-  }
-  if (format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format)) return set_error(GL_INVALID_ENUM);
+  if (format != GL_STENCIL_INDEX && format != GL_DEPTH_COMPONENT && !is_color_pixel_format(format))
+    return set_error(GL_INVALID_ENUM);
   if (format == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
   if (!raster_.valid || width == 0 || height == 0 || !pixels) return;  // §3.6.4: invalid raster position: nothing
-  if (!rectangle_fits_in_memory(width, height)) return;
-  if (format == GL_DEPTH_COMPONENT) {
+  // Work proportional to what is drawn (issue 21), as glCopyPixels: only the groups that can
+  // land in the window are unpacked, transferred and placed — where the whole image would place
+  // them. The sub-image is the same memory entered further on (§3.6.4): SKIP_PIXELS and SKIP_ROWS
+  // grow by the groups and rows left out, the row length stays the image's. Not with a
+  // convolution, histogram or minmax, which see the whole image.
+  int first_column = 0, first_row = 0, w = width, h = height;
+  PixelStore store = pixel_store_.unpack;
+  if (!is_color_pixel_format(format) ||
+      (!active_convolution(transfer_, 2) && !transfer_.histogram.enabled && !transfer_.minmax.enabled)) {
+    const auto [c0, c1] = visible_groups(round_half_up(raster_.window.x), zoom_x_, width, fb_.width());
+    const auto [r0, r1] = visible_groups(round_half_up(raster_.window.y), zoom_y_, height, fb_.height());
+    if (c1 <= c0 || r1 <= r0) return;
+    constexpr std::int64_t kIntMax = std::numeric_limits<int>::max();
+    if (std::int64_t{store.skip_pixels} + c0 <= kIntMax && std::int64_t{store.skip_rows} + r0 <= kIntMax) {
+      if (store.row_length == 0) store.row_length = width;
+      store.skip_pixels += c0, store.skip_rows += r0;
+      first_column = c0, first_row = r0, w = c1 - c0, h = r1 - r0;
+    }
+  }
+  if (!rectangle_fits_in_memory(w, h)) return;
+  if (format == GL_STENCIL_INDEX) {
+    std::vector<double> indices;
+    unpack_indices(pixels, w, h, format, type, store, indices);
+    transfer_stencil(indices, transfer_, counters());
+    draw_stencil_rectangle(w, h, indices, first_column, first_row);
+  } else if (format == GL_DEPTH_COMPONENT) {
     std::vector<double> depth;
-    unpack_depth(pixels, width, height, type, pixel_store_.unpack, depth);
+    unpack_depth(pixels, w, h, type, store, depth);
     transfer_depth(depth, transfer_);
-    draw_pixel_rectangle(width, height, nullptr, &depth);
+    draw_pixel_rectangle(w, h, nullptr, &depth, first_column, first_row);
   } else {
     std::vector<Rgba> rgba;
-    unpack_rgba(pixels, width, height, format, type, pixel_store_.unpack, rgba);
-    int w = width, h = height;  // a REDUCE convolution shrinks the image
+    unpack_rgba(pixels, w, h, format, type, store, rgba);
+    // A REDUCE convolution shrinks the image (never clipped: first_column = first_row = 0).
     if (transfer_rgba(rgba, w, h, transfer_, transform_.color.back(), counters()) && w > 0 && h > 0)
-      draw_pixel_rectangle(w, h, &rgba, nullptr);
+      draw_pixel_rectangle(w, h, &rgba, nullptr, first_column, first_row);
   }
 }
 
@@ -603,13 +644,32 @@ void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
   pack_rgba(out, width, height, format, type, pixel_store_.pack, pixels);
 }
 
-void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum type) {
-  PASSIM_ENTRY(x, y, width, height, type)
+void Context::glCopyPixels(GLint x_requested, GLint y_requested, GLsizei width_requested, GLsizei height_requested,
+                           GLenum type) {
+  PASSIM_ENTRY(x_requested, y_requested, width_requested, height_requested, type)
   if (type != GL_COLOR && type != GL_DEPTH && type != GL_STENCIL) return set_error(GL_INVALID_ENUM);
-  if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
+  if (width_requested < 0 || height_requested < 0) return set_error(GL_INVALID_VALUE);
   if ((type == GL_DEPTH && fb_.config.depth_bits == 0) || (type == GL_STENCIL && fb_.config.stencil_bits == 0))
     return set_error(GL_INVALID_OPERATION);
-  if (!raster_.valid || width == 0 || height == 0) return;
+  if (!raster_.valid || width_requested == 0 || height_requested == 0) return;
+  // Work proportional to what is drawn (issue 21): a source pixel whose group (A20) lands
+  // outside the window makes no fragment, and each pixel's transfer is its own, so only the
+  // columns and rows that can reach the window are read, transferred and placed — placed where
+  // the whole rectangle would put them. Not so when a convolution (its neighbours) or a
+  // histogram or minmax (every pixel counts, §3.6.3) sees the whole rectangle.
+  int first_column = 0, first_row = 0, width = width_requested, height = height_requested;
+  if (type != GL_COLOR || (!active_convolution(transfer_, 2) && !transfer_.histogram.enabled && !transfer_.minmax.enabled)) {
+    const auto [c0, c1] = visible_groups(round_half_up(raster_.window.x), zoom_x_, width, fb_.width());
+    const auto [r0, r1] = visible_groups(round_half_up(raster_.window.y), zoom_y_, height, fb_.height());
+    if (c1 <= c0 || r1 <= r0) return;
+    first_column = c0, first_row = r0, width = c1 - c0, height = r1 - r0;
+  }
+  // The source moves with the clipping; beyond the largest int it lies outside the window,
+  // where every pixel reads as undefined (0) wherever it starts.
+  const auto clamp_int = [](std::int64_t v) {
+    return static_cast<int>(std::min<std::int64_t>(v, std::numeric_limits<int>::max()));
+  };
+  const int x = clamp_int(std::int64_t{x_requested} + first_column), y = clamp_int(std::int64_t{y_requested} + first_row);
   if (!rectangle_fits_in_memory(width, height)) return;
   Counters& c = counters();
   c.pixels_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
@@ -619,13 +679,13 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     read_framebuffer_stencil(x, y, width, height, indices);
     c.stencil_bits_read += indices.size() * static_cast<std::uint64_t>(fb_.config.stencil_bits);
     transfer_stencil(indices, transfer_, c);
-    draw_stencil_rectangle(width, height, indices);
+    draw_stencil_rectangle(width, height, indices, first_column, first_row);
   } else if (type == GL_DEPTH) {
     std::vector<double> depth;
     read_framebuffer_depth(x, y, width, height, depth);
     c.depth_bits_read += depth.size() * static_cast<std::uint64_t>(fb_.config.depth_bits);
     transfer_depth(depth, transfer_);
-    draw_pixel_rectangle(width, height, nullptr, &depth);
+    draw_pixel_rectangle(width, height, nullptr, &depth, first_column, first_row);
   } else {
     const auto& b = fb_.config.color_bits;
     c.color_bits_read += static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
@@ -650,7 +710,7 @@ void Context::glCopyPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLen
     // the source was read whole above).
     const std::uint64_t n = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
     c.pixels_drawn += n;
-    const RectanglePlacement placement = place_rectangle(width, height);
+    const RectanglePlacement placement = place_rectangle(width, height, first_column, first_row);
     std::vector<std::uint16_t> copy;
     const SourceCodes source =
         read_framebuffer_codes(x, y, width, height, copy_source_needed(placement, y, height) ? &copy : nullptr);

@@ -696,3 +696,70 @@ TEST(Pixels, CopyTexImageThroughAPerComponentTransferMatchesTheSpecFormulas) {
       EXPECT_EQ(wrong, 0);
     }
 }
+
+// Issue 21, "work proportional to what is drawn": a copy 2^31 − 1 pixels long draws the few
+// groups that land in the window, each where the whole rectangle would put it, and reads no
+// more than those. The window holds red = 1 + x + 6y (drawn first); expected values by hand.
+TEST(Pixels, HugeCopyPixelsIsClippedToTheWindowBeforeAnythingIsRead) {
+  Context ctx(test::small_config(6, 6));
+  test::window_projection(ctx);
+  std::vector<GLubyte> image(6 * 6 * 4, 255);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x) image[static_cast<std::size_t>(4 * (x + 6 * y))] = static_cast<GLubyte>(1 + x + 6 * y);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glDrawPixels(6, 6, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
+  const Counters before = ctx.total_counters();
+  // Zoom 1 from raster position (2, 1): group i lands on pixel (2 + i, 1); i = 0..3 are in the
+  // window, so row 1 becomes 7, 8 (untouched), then source row 0's 1, 2, 3, 4.
+  ctx.glRasterPos2i(2, 1);
+  ctx.glCopyPixels(0, 0, 2147483647, 1, GL_COLOR);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const unsigned row1[6] = {7, 8, 1, 2, 3, 4};
+  for (int x = 0; x < 6; ++x) EXPECT_EQ(pixel(ctx, x, 1)[0], row1[x]) << "x " << x;
+  const Counters after = ctx.total_counters();
+  EXPECT_EQ(after.fragments_generated - before.fragments_generated, 4u);
+  EXPECT_LE(after.pixels_read - before.pixels_read, 6u);  // a window row at most, not 2^31
+  // Mirrored in y from (0, 5): group j covers rows [4 − j, 5 − j), so source column 3's rows
+  // 0..4 (red 4, then 2 as the copy above left it, 16, 22, 28) land on column 0's rows 4 down to 0.
+  ctx.glPixelZoom(1, -1);
+  ctx.glRasterPos2i(0, 5);
+  ctx.glCopyPixels(3, 0, 1, 2147483647, GL_COLOR);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const unsigned column0[5] = {28, 22, 16, 2, 4};  // rows 0..4
+  for (int y = 0; y < 5; ++y) EXPECT_EQ(pixel(ctx, 0, y)[0], column0[y]) << "y " << y;
+  EXPECT_EQ(pixel(ctx, 0, 5)[0], 31u);  // row 5 is no group's: untouched (1 + 0 + 30)
+  // A source far outside the window: its pixels are undefined (passim reads 0), still drawn
+  // where they land, (2..5, 1) from (2, 1).
+  ctx.glPixelZoom(1, 1);
+  ctx.glRasterPos2i(2, 1);
+  ctx.glCopyPixels(-2147483647 - 1, 0, 2147483647, 1, GL_COLOR);
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  for (int x = 2; x < 6; ++x) EXPECT_EQ(pixel(ctx, x, 1)[0], 0u) << "x " << x;
+  EXPECT_EQ(pixel(ctx, 1, 1)[0], 8u);
+}
+
+// glDrawPixels unpacks only the groups that can land in the window, entering the image further
+// on (§3.6.4: SKIP_PIXELS grows, the row length stays the image's). A 5x2 image of RGBA bytes
+// with SKIP_PIXELS 1 (row length = width 5), red = 10 + k for memory group k: group (i, j) is
+// memory group 5j + 1 + i, and lands on (−2 + i, j); i = 2..4 are in the window.
+TEST(Pixels, DrawPixelsPartlyOutsideTheWindowReadsTheSameGroups) {
+  Context ctx(test::small_config(6, 6));
+  test::window_projection(ctx);
+  std::vector<GLubyte> image(11 * 4, 255);
+  for (int k = 0; k < 11; ++k) image[static_cast<std::size_t>(4 * k)] = static_cast<GLubyte>(10 + k);
+  ctx.glRasterPos2i(0, 0);
+  ctx.glBitmap(0, 0, 0, 0, -2, 0, nullptr);  // the raster position moves to x = −2, still valid
+  ctx.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  ctx.glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
+  const Counters before = ctx.total_counters();
+  ctx.glDrawPixels(5, 2, GL_RGBA, GL_UNSIGNED_BYTE, image.data());
+  EXPECT_EQ(ctx.glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const unsigned row0[4] = {13, 14, 15, 0}, row1[4] = {18, 19, 20, 0};
+  for (int x = 0; x < 4; ++x) {
+    EXPECT_EQ(pixel(ctx, x, 0)[0], row0[x]) << "x " << x;
+    EXPECT_EQ(pixel(ctx, x, 1)[0], row1[x]) << "x " << x;
+  }
+  const Counters after = ctx.total_counters();
+  EXPECT_EQ(after.fragments_generated - before.fragments_generated, 6u);
+  EXPECT_LT(after.pixels_drawn - before.pixels_drawn, 10u);  // not all 5x2 groups were unpacked
+}

@@ -19,6 +19,12 @@ void CallRunner::check_lengths(const CallInfo& info, const std::vector<Value>& v
   for (std::size_t k = 0; k < info.params.size(); ++k) {
     const CallInfo::Param& p = info.params[k];
     if (!p.is_array() || p.length == Length::Any) continue;
+    const Value& v = values[k];
+    const bool null = !v.bytes || v.count == 0;
+    // No data: the GL reads nothing, so what the unpack modes would address does not matter
+    // (and its size may overflow: the call's own checks, e.g. a width beyond the maximum, then
+    // raise the GL error).
+    if (p.kind != 'O' && null && param_may_be_null(p)) continue;
     std::uint64_t need = 0;
     try {
       need = param_elements_needed(info, k, values, ctx_.unpack_store());
@@ -33,9 +39,6 @@ void CallRunner::check_lengths(const CallInfo& info, const std::vector<Value>& v
                            k + 1, p.name, need, kOutputScratchElements));
       continue;
     }
-    const Value& v = values[k];
-    const bool null = !v.bytes || v.count == 0;
-    if (null && param_may_be_null(p)) continue;  // no data: the GL reads nothing
     if (v.count < need) {
       const bool image = p.length == Length::Image || p.length == Length::Bitmap;
       reject(fmt::format("{}: argument {} ({}) needs {} values{}, the trace gives {}", info.name, k + 1, p.name, need,

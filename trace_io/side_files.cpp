@@ -21,6 +21,18 @@ bool inside(const fs::path& path, const fs::path& folder) {
   return true;
 }
 
+// The name as a message may show it: a NUL would end the message there (what() is a C
+// string) and a control character could rewrite the terminal, so both are written \xHH.
+std::string printable(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) out += fmt::format("\\x{:02x}", u);
+    else out += c;
+  }
+  return out;
+}
+
 fs::path canonical_folder(const fs::path& folder) {
   std::error_code ec;
   fs::path c = fs::canonical(folder.empty() ? fs::path(".") : folder, ec);
@@ -34,8 +46,16 @@ SideFiles::SideFiles(fs::path folder, std::vector<fs::path> allowed) : folder_(c
 }
 
 fs::path SideFiles::resolve(const std::string& name) const {
+  const std::optional<fs::path> found = find(name);
+  if (!found)
+    throw SideFileRefused(fmt::format("cannot read side file '{}' ({})", printable(name),
+                                      std::make_error_code(std::errc::no_such_file_or_directory).message()));
+  return *found;
+}
+
+std::optional<fs::path> SideFiles::find(const std::string& name) const {
   auto refuse = [&](const std::string& why) -> fs::path {
-    throw SideFileRefused(fmt::format("side file '{}' refused: {}", name, why));
+    throw SideFileRefused(fmt::format("side file '{}' refused: {}", printable(name), why));
   };
   if (name.empty()) return refuse("the name is empty");
   if (name.find('\0') != std::string::npos) return refuse("the name holds a NUL character");
@@ -49,7 +69,9 @@ fs::path SideFiles::resolve(const std::string& name) const {
   const fs::path joined = given.is_absolute() ? given : folder_ / given;
   std::error_code ec;
   const fs::path real = fs::canonical(joined, ec);  // follows every link
-  if (ec) throw SideFileRefused(fmt::format("cannot read side file '{}' ({})", name, ec.message()));
+  // Missing (the name passed the rules above, so this says nothing of other folders).
+  if (ec == std::errc::no_such_file_or_directory) return std::nullopt;
+  if (ec) throw SideFileRefused(fmt::format("cannot read side file '{}' ({})", printable(name), ec.message()));
   bool ok = inside(real, folder_);
   for (const fs::path& a : allowed_) ok = ok || inside(real, a);
   if (!ok)
@@ -65,15 +87,15 @@ std::string SideFiles::read(const std::string& name, std::uint64_t max_bytes) co
   const fs::path path = resolve(name);
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw SideFileRefused(fmt::format("side file '{}' cannot be read ({})", name, ec.message()));
+  if (ec) throw SideFileRefused(fmt::format("side file '{}' cannot be read ({})", printable(name), ec.message()));
   if (size > max_bytes)
     throw SideFileRefused(fmt::format("side file '{}' holds {} bytes, more than the {} the run's memory budget "
                                       "leaves (--max-memory)",
-                                      name, size, max_bytes));
+                                      printable(name), size, max_bytes));
   std::ifstream in(path, std::ios::binary);
   std::string bytes(static_cast<std::size_t>(size), '\0');
   if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(size)) || in.gcount() != static_cast<std::streamsize>(size))
-    throw SideFileRefused(fmt::format("side file '{}' cannot be read whole", name));
+    throw SideFileRefused(fmt::format("side file '{}' cannot be read whole", printable(name)));
   return bytes;
 }
 

@@ -7,6 +7,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ class SideFiles {
 
   // The file `name` names, once every rule holds (it exists and is a regular file).
   std::filesystem::path resolve(const std::string& name) const;
+  // The same, but nothing when no such file exists (the rules on the name still throw).
+  std::optional<std::filesystem::path> find(const std::string& name) const;
   // Its bytes; SideFileRefused beyond `max_bytes`.
   std::string read(const std::string& name, std::uint64_t max_bytes) const;
 

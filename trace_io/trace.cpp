@@ -15,6 +15,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "trace_io/call_runner.hpp"
 #include "trace_io/obj_file.hpp"
@@ -221,7 +222,15 @@ struct Cursor {
           if (hi < 0 || lo < 0) throw std::runtime_error("a \\x escape takes two hex digits, e.g. \\x0a");
           out += static_cast<char>(hi * 16 + lo);
           pos += 2;
-        } else out += e;
+        } else if (e == '"' || e == '\\') {
+          out += e;
+        } else {
+          // docs/trace-format.md names the escapes; any other is a malformed string, not a
+          // character silently dropped or kept.
+          throw std::runtime_error(fmt::format("unknown escape '\\{}' in a string (the escapes are \\\" \\\\ \\n \\t \\xHH)",
+                                               std::isprint(static_cast<unsigned char>(e)) ? std::string(1, e)
+                                                                                           : fmt::format("x{:02x}", static_cast<unsigned char>(e))));
+        }
       } else {
         out += c;
       }
@@ -234,9 +243,28 @@ struct Cursor {
 // A parsed argument before its parameter kind gives it meaning.
 struct Arg {
   enum Kind { Expr, String, Array, File, Null } kind = Expr;
-  std::vector<std::string> terms;  // Expr: terms joined by '|'; Array: elements
+  std::vector<std::string> terms;  // Expr: terms joined by '|'
   std::string text;                // String / File
+  // Array: its elements' text inside the braces, read when the element type is known. Not a
+  // string an element: 16 Mi elements in 32 MiB of trace took 1.3 GB so (hostile-input suite).
+  std::string_view elements;
+  std::size_t count = 0;
 };
+
+// The next element of an array's text (a word: letters, digits, '_', '.', '+', '-'), after the
+// separators before it; the text was checked as words and commas when it was parsed.
+std::string_view next_element(std::string_view& rest) {
+  auto word_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '+' || c == '-';
+  };
+  std::size_t k = 0;
+  while (k < rest.size() && !word_char(rest[k])) ++k;
+  std::size_t end = k;
+  while (end < rest.size() && word_char(rest[end])) ++end;
+  const std::string_view element = rest.substr(k, end - k);
+  rest.remove_prefix(end);
+  return element;
+}
 
 Arg parse_arg(Cursor& c, const std::function<void(const std::string&)>& fail) {
   // "name = value" (apitrace dump style): drop the name.
@@ -259,15 +287,16 @@ Arg parse_arg(Cursor& c, const std::function<void(const std::string&)>& fail) {
   if (p == '{') {
     ++c.pos;
     a.kind = Arg::Array;
+    const std::size_t start = c.pos;
     if (c.eat('}')) return a;
     while (true) {
-      std::string w = c.word();
-      if (w.empty()) fail("expected a number in the array");
-      a.terms.push_back(w);
+      if (c.word().empty()) fail("expected a number in the array");
+      ++a.count;
       if (c.eat('}')) break;
       if (!c.eat(',')) fail("expected ',' or '}' in the array");
       if (c.eat('}')) break;  // trailing comma
     }
+    a.elements = std::string_view(c.s).substr(start, c.pos - start);
     return a;
   }
   std::string w = c.word();
@@ -294,7 +323,7 @@ Arg parse_arg(Cursor& c, const std::function<void(const std::string&)>& fail) {
 }
 
 template <class T>
-std::optional<T> parse_number(const std::string& w) {
+std::optional<T> parse_number(std::string_view w) {
   if constexpr (std::is_floating_point_v<T>) {
     std::string_view v = w;
     bool neg = false;
@@ -390,6 +419,10 @@ class Replayer {
 
   void ensure_context() {
     if (result_.context) return;
+    // The context is made at the first call; what its settings get wrong is the header's
+    // (the last header directive's line), not that call's.
+    const int call_line = line_;
+    if (header_line_ > 0) line_ = header_line_;
     TraceSettings& s = result_.settings;
     const MachineProfile* profile = find_profile(profile_name_);
     if (!profile) fail(fmt::format("unknown machine profile '{}' (see 'passim info')", profile_name_));
@@ -417,6 +450,7 @@ class Replayer {
     } catch (const BudgetExceeded& e) {
       fail(e.what());
     }
+    line_ = call_line;
     result_.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
     if (options_.record) {
@@ -428,7 +462,8 @@ class Replayer {
   void apply_framebuffer_setting(FramebufferConfig& f, const std::string& key, const std::string& value) {
     auto integer = [&](const std::string& v) {
       auto n = parse_number<std::int64_t>(v);
-      if (!n || *n < 0 || *n > 1000000) fail(fmt::format("@framebuffer {}={}: expected a whole number", key, v));
+      if (!n || *n < 0 || *n > 1000000)
+        fail(fmt::format("@framebuffer {}={}: expected a whole number from 0 to 1000000", key, v));
       return static_cast<int>(*n);
     };
     if (key == "size") {
@@ -475,6 +510,7 @@ class Replayer {
       return words;
     };
     const bool header = d == "profile" || d == "framebuffer" || d == "subpixel";
+    if (header) header_line_ = line_;
     if (header && result_.context) fail(fmt::format("@{} must come before the first GL call", d));
     std::vector<std::string> w = rest_words();
     if (d == "profile") {
@@ -674,13 +710,16 @@ class Replayer {
         fail(fmt::format("side file '{}' holds {} bytes, not a whole number of {}-byte elements", a.text, raw.size(),
                          size));
       bytes->resize(raw.size());
-      std::memcpy(bytes->data(), raw.data(), raw.size());
+      // An empty file (or a /proc file, which states a size of 0) leaves data() null, which
+      // memcpy may not be given even for 0 bytes (UBSan, hostile case proc_self_allowed).
+      if (!raw.empty()) std::memcpy(bytes->data(), raw.data(), raw.size());
       v.count = raw.size() / static_cast<std::size_t>(size);
     } else if (a.kind == Arg::Array) {
-      bytes->resize(a.terms.size() * static_cast<std::size_t>(size));
-      for (std::size_t k = 0; k < a.terms.size(); ++k) {
+      bytes->resize(a.count * static_cast<std::size_t>(size));
+      std::string_view rest = a.elements;
+      for (std::size_t k = 0; k < a.count; ++k) {
         std::byte* dst = bytes->data() + k * static_cast<std::size_t>(size);
-        const std::string& t = a.terms[k];
+        const std::string_view t = next_element(rest);
         auto bad = [&] { fail(fmt::format("{}: array element {} '{}' is not a valid {}", info.name, k + 1, t, enum_name(type))); };
         auto store_int = [&](auto tag, std::int64_t lo, std::int64_t hi) {
           auto n = parse_number<std::int64_t>(t);
@@ -699,7 +738,7 @@ class Replayer {
           default: store_int(std::uint8_t{}, 0, UINT8_MAX); break;
         }
       }
-      v.count = a.terms.size();
+      v.count = a.count;
     } else {
       fail(fmt::format("{}: argument {} must be an array {{...}}, file(\"...\") or NULL", info.name, index + 1));
     }
@@ -764,6 +803,7 @@ class Replayer {
   SideFiles side_files_;
   ReplayOptions options_;
   int line_ = 0;
+  int header_line_ = 0;  // the last @profile, @framebuffer or @subpixel
   std::string profile_name_ = "ideal";
   std::map<std::string, std::string> fb_overrides_;
   int subpixel_ = -1;
