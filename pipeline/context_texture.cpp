@@ -562,7 +562,6 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   // §3.8.2: internalformat 1-4 are not accepted by CopyTexImage.
   if (f && internalformat >= 1 && internalformat <= 4) return set_error(GL_INVALID_VALUE);
   if (f && f->base == GL_DEPTH_COMPONENT && fb_.config.depth_bits == 0) return set_error(GL_INVALID_OPERATION);
-  if (!rectangle_fits_in_memory(width, height)) return;
   const std::size_t errors = error_log_.size();
   // A colour copy stores every texel unless a histogram or minmax sink consumes the pixels
   // or a convolution changes the size (then the level starts from zeros).
@@ -571,6 +570,9 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   tex_image(target, dims, level, static_cast<GLint>(internalformat), width, height, border,
             f && f->base == GL_DEPTH_COMPONENT ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr, overwritten);
   if (error_log_.size() != errors) return;
+  // After tex_image's size checks (§3.8.2: a width past the limits is INVALID_VALUE, not a
+  // rectangle too large to read); past the budget, §2.5 leaves the level undefined.
+  if (!rectangle_fits_in_memory(width, dims == 2 ? height : 1)) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
   if (l.format.base != GL_DEPTH_COMPONENT)
