@@ -11,6 +11,8 @@
 #include <type_traits>
 #include <map>
 #include <memory>
+#include <set>
+#include <source_location>
 #include <string>
 #include <vector>
 
@@ -357,6 +359,9 @@ class Context {
   const std::vector<Pass>& passes() const { return passes_; }
   Counters total_counters() const;
   const std::vector<GlErrorRecord>& error_log() const { return error_log_; }
+  // The places in the GL machine's sources (file name, line) whose error rules have raised an
+  // error in this process, in any context: what the negative tests have reached.
+  static std::set<std::pair<std::string, int>> error_sites_reached();
   const std::vector<std::string>& warnings() const { return warnings_; }
   // Raises InternalError if any pass broke the fragment balance.
   void check_balance() const;
@@ -402,7 +407,9 @@ class Context {
 
  private:
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
-  void set_error(GLenum error);
+  // `site`: where the rule that raised it is written (for the test that every rule has a
+  // negative test, GlErrors.EveryErrorRuleHasANegativeTest).
+  void set_error(GLenum error, std::source_location site = std::source_location::current());
   // §2.5: a call whose working buffers — `pixels` pixels of a rectangle as the pixel path holds
   // them — would pass what is left of the memory budget raises OUT_OF_MEMORY (false: the call
   // must then do nothing).

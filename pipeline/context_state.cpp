@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
+#include <mutex>
 
 #include "pipeline/checked_size.hpp"
 #include "pipeline/context.hpp"
@@ -16,10 +17,31 @@ namespace passim {
 
 // ---------------------------------------------------------------- errors
 
-void Context::set_error(GLenum error) {
+namespace {
+std::mutex& error_sites_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::set<std::pair<std::string, int>>& error_sites() {
+  static std::set<std::pair<std::string, int>> sites;
+  return sites;
+}
+}  // namespace
+
+void Context::set_error(GLenum error, std::source_location site) {
   // §2.5: the first error is kept until glGetError reads it; every error is logged.
   if (error_ == GL_NO_ERROR) error_ = error;
   error_log_.push_back(GlErrorRecord{current_call_, error, where_});
+  const std::string_view file = site.file_name();
+  const std::size_t slash = file.find_last_of('/');
+  std::lock_guard<std::mutex> lock(error_sites_mutex());
+  error_sites().emplace(std::string(slash == std::string_view::npos ? file : file.substr(slash + 1)),
+                        static_cast<int>(site.line()));
+}
+
+std::set<std::pair<std::string, int>> Context::error_sites_reached() {
+  std::lock_guard<std::mutex> lock(error_sites_mutex());
+  return error_sites();
 }
 
 bool Context::rectangle_fits_in_memory(std::int64_t width, std::int64_t height) {
