@@ -12,7 +12,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <source_location>
 #include <string>
 #include <vector>
 
@@ -407,9 +406,11 @@ class Context {
 
  private:
   bool intercept_values(const CallInfo& info, std::vector<Value>&& values);
-  // `site`: where the rule that raised it is written (for the test that every rule has a
-  // negative test, GlErrors.EveryErrorRuleHasANegativeTest).
-  void set_error(GLenum error, std::source_location site = std::source_location::current());
+  // `site_file`, `site_line`: where the rule that raised it is written (for the test that every
+  // rule has a negative test, GlErrors.EveryErrorRuleHasANegativeTest).
+  // (__builtin_FILE/LINE rather than std::source_location, which clang 14 with libstdc++ 12 —
+  // the fuzz build — lacks.)
+  void set_error(GLenum error, const char* site_file = __builtin_FILE(), int site_line = __builtin_LINE());
   // §2.5: a call whose working buffers — `pixels` pixels of a rectangle as the pixel path holds
   // them — would pass what is left of the memory budget raises OUT_OF_MEMORY (false: the call
   // must then do nothing).

@@ -28,15 +28,14 @@ std::set<std::pair<std::string, int>>& error_sites() {
 }
 }  // namespace
 
-void Context::set_error(GLenum error, std::source_location site) {
+void Context::set_error(GLenum error, const char* site_file, int site_line) {
   // §2.5: the first error is kept until glGetError reads it; every error is logged.
   if (error_ == GL_NO_ERROR) error_ = error;
   error_log_.push_back(GlErrorRecord{current_call_, error, where_});
-  const std::string_view file = site.file_name();
+  const std::string_view file = site_file;
   const std::size_t slash = file.find_last_of('/');
   std::lock_guard<std::mutex> lock(error_sites_mutex());
-  error_sites().emplace(std::string(slash == std::string_view::npos ? file : file.substr(slash + 1)),
-                        static_cast<int>(site.line()));
+  error_sites().emplace(std::string(slash == std::string_view::npos ? file : file.substr(slash + 1)), site_line);
 }
 
 std::set<std::pair<std::string, int>> Context::error_sites_reached() {
