@@ -572,8 +572,13 @@ void Context::copy_tex_image(GLenum target, int dims, GLint level, GLenum intern
   if (error_log_.size() != errors) return;
   // After tex_image's size checks (§3.8.2: a width past the limits is INVALID_VALUE, not a
   // rectangle too large to read); past the budget, §2.5 leaves the level undefined.
-  if (!rectangle_fits_in_memory(width, dims == 2 ? height : 1)) return;
   TextureLevel& l = texture_for(target)->levels[static_cast<std::size_t>(level)];
+  if (!rectangle_fits_in_memory(width, dims == 2 ? height : 1)) {
+    // The level was defined to be overwritten, its codes unset: zeros, so that every code
+    // stays below its width (the decoding tables are indexed by them).
+    std::fill(l.texels.begin(), l.texels.end(), std::uint16_t{0});
+    return;
+  }
   // The source rectangle is read whole; a REDUCE convolution brings it to the level's size.
   if (l.format.base != GL_DEPTH_COMPONENT)
     return copy_color_texels(dims, x, y, width, dims == 2 ? height : 1, l, 0, 0, l.width, l.height);
