@@ -361,6 +361,7 @@ class Context {
   // The places in the GL machine's sources (file name, line) whose error rules have raised an
   // error in this process, in any context: what the negative tests have reached.
   static std::set<std::pair<std::string, int>> error_sites_reached();
+  static void forget_error_sites_reached();  // so that a test counts only what its own calls reach
   const std::vector<std::string>& warnings() const { return warnings_; }
   // Raises InternalError if any pass broke the fragment balance.
   void check_balance() const;

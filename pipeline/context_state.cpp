@@ -43,6 +43,11 @@ std::set<std::pair<std::string, int>> Context::error_sites_reached() {
   return error_sites();
 }
 
+void Context::forget_error_sites_reached() {
+  std::lock_guard<std::mutex> lock(error_sites_mutex());
+  error_sites().clear();
+}
+
 bool Context::rectangle_fits_in_memory(std::int64_t width, std::int64_t height) {
   if (width < 0 || height < 0) return true;  // INVALID_VALUE, raised by the call's own checks
   try {

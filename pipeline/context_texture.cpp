@@ -355,11 +355,8 @@ void Context::reduced_size(int dims, int& width, int& height) const {
 
 TextureLevel* Context::sub_image_level(GLenum target, int dims, GLint level, GLint xoffset, GLint yoffset,
                                        GLsizei width, GLsizei height) {
-  // §3.8.2: the level must exist and the rectangle lie inside it (borders included).
-  if (target != (dims == 1 ? GL_TEXTURE_1D : GL_TEXTURE_2D)) {
-    set_error(GL_INVALID_ENUM);
-    return nullptr;
-  }
+  // §3.8.2: the level must exist and the rectangle lie inside it (borders included). The
+  // target is the callers' first check (tex_sub_image, copy_tex_sub_image).
   TextureObject& tex = *texture_for(target);
   if (level < 0 || static_cast<std::size_t>(level) >= tex.levels.size() || !tex.levels[level].defined()) {
     set_error(level < 0 ? GL_INVALID_VALUE : GL_INVALID_OPERATION);
