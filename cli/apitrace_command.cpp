@@ -11,6 +11,7 @@
 #include "cli/args.hpp"
 #include "cli/cross_check_command.hpp"
 #include "trace_io/apitrace_replay.hpp"
+#include "trace_io/query_log.hpp"
 #include "reports/image_io.hpp"
 #include "reports/report.hpp"
 
@@ -67,6 +68,11 @@ int apitrace_run_command(const ApitraceCommand& c) {
   }
   std::optional<ScopedKernelPaths> reference;
   if (c.reference) reference.emplace(KernelPaths::reference());
+  std::optional<QueryLog> queries;
+  if (!c.queries.empty()) {
+    queries.emplace(c.queries_arrays.empty() ? std::nullopt : std::optional<fs::path>(c.queries_arrays));
+    o.queries = &*queries;
+  }
   ApitraceReplay r = replay_apitrace(c.trace, o);
   // A replay that stops with an error writes nothing (no image of a run that failed is left).
   if (r.result.context && !r.error) {
@@ -85,6 +91,11 @@ int apitrace_run_command(const ApitraceCommand& c) {
     report["apitrace"] = {{"calls", r.calls}, {"frames", r.frames}, {"unsupported", unsupported}};
     write_text_file(out / "counters.json", report.dump(2) + "\n");
     files.push_back(out / "counters.json");
+    if (queries) {
+      queries->commit();
+      write_text_file(c.queries, queries->json().dump(2) + "\n");
+      files.push_back(c.queries);
+    }
     if (!c.quiet) {
       const FramebufferConfig& f = r.result.settings.framebuffer;
       std::cout << fmt::format("{} -> {}: {} calls, {} frames; {}x{}, colour {},{},{},{}, depth {}, stencil {}, "

@@ -17,6 +17,7 @@ struct ApitraceCommand {
   bool strict = false, tiff = false, quiet = false;
   std::uint64_t max_memory = std::uint64_t{1} << 30;  // --max-memory
   bool reference = false, cross_check = false;         // the kernel paths (reports/cross_check.hpp)
+  std::string queries, queries_arrays;                 // run: --queries FILE, --queries-arrays DIR
 };
 
 int apitrace_run_command(const ApitraceCommand& c);

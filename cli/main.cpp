@@ -21,6 +21,7 @@
 
 #include "pipeline/allocator.hpp"
 #include "trace_io/apitrace_replay.hpp"
+#include "trace_io/query_log.hpp"
 #include "pipeline/calls.hpp"
 #include "reports/image_io.hpp"
 #include "pipeline/profile.hpp"
@@ -64,6 +65,7 @@ struct RunCommand {
   std::uint64_t max_memory = kDefaultMemoryBudget;
   std::vector<fs::path> allow_files;
   bool reference = false, cross_check = false;
+  std::string queries, queries_arrays;  // --queries FILE, --queries-arrays DIR
 };
 
 // The replay's progress, from the re-recording the replay offers (ReplayOptions::record): the
@@ -122,6 +124,11 @@ int run_command(const RunCommand& c) {
   options.max_memory = c.max_memory;
   options.allow_files = c.allow_files;
   if (!record.empty() || watch) options.record = &writer;
+  std::optional<QueryLog> queries;
+  if (!c.queries.empty()) {
+    queries.emplace(c.queries_arrays.empty() ? std::nullopt : std::optional<fs::path>(c.queries_arrays));
+    options.queries = &*queries;
+  }
   RunOutput result;
   try {
     if (c.cross_check) {
@@ -138,6 +145,11 @@ int run_command(const RunCommand& c) {
     result = run_trace_to_dir(trace, out, options, c.tiff);
     progress.finish();
     if (!record.empty()) write_text_file(record, recorded.str());
+    if (queries) {
+      queries->commit();
+      write_text_file(c.queries, queries->json().dump(2) + "\n");
+      result.files.push_back(c.queries);
+    }
   } catch (const TraceError& e) {
     std::cerr << "passim: " << e.what() << "\n";
     return kRunError;
@@ -441,6 +453,13 @@ int dispatch(int argc, char** argv) {
   run->add_flag("--tiff", rc.tiff, "Write colour images wider than 8 bits as 16-bit TIFF instead of 16-bit PNG");
   run->add_flag("--write-expected", rc.write_expected, "Also write DIR/expected.json (hashes and counters of this run)");
   run->add_flag("--quiet,-q", rc.quiet, "Print nothing but errors");
+  run->add_option("--queries", rc.queries,
+                  "Write what every query returned (glGet*, glIsEnabled, glGetError, glReadPixels, glGetTexImage, "
+                  "glGetHistogram, glGetMinmax, the tables and filters), in order, to this JSON file");
+  run->add_option("--queries-arrays", rc.queries_arrays,
+                  "Also write each query result of more than 64 values to this folder, one file each (the JSON "
+                  "gives its hash and name)")
+      ->needs(run->get_option("--queries"));
   // Input from strangers (docs/hostile-input.md): what a replay may take and read.
   auto input_limits = [](CLI::App* cmd, std::uint64_t& max_memory) {
     cmd->add_option("--max-memory", max_memory,
@@ -460,6 +479,7 @@ int dispatch(int argc, char** argv) {
         ->excludes(cmd->get_option("--reference"));
   };
   path_options(run, rc.reference, rc.cross_check);
+  run->get_option("--cross-check")->excludes(run->get_option("--queries"));
   run->add_option("--allow-files", rc.allow_files,
                   "A folder side files (file(...), @mesh) may also come from; by default only the trace's own "
                   "folder (repeatable)")
@@ -673,6 +693,8 @@ int dispatch(int argc, char** argv) {
       ac.max_memory = rc.max_memory;
       ac.reference = rc.reference;
       ac.cross_check = rc.cross_check;
+      ac.queries = rc.queries;
+      ac.queries_arrays = rc.queries_arrays;
       if (!rc.allow_files.empty()) {
         std::cerr << "passim run: --allow-files is for .pass traces (an apitrace trace reads no side files)\n";
         return kUsage;

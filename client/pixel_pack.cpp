@@ -98,4 +98,9 @@ void pack_indices(const std::vector<double>& indices, int width, int height, GLe
   });
 }
 
+std::uint64_t packed_image_elements(int width, int height, GLenum format, GLenum type, const PixelStore& store) {
+  if (width <= 0 || height <= 0 || format_components(format) == 0 || !is_pixel_type(type)) return 0;
+  return image_bytes(width, height, format, type, store) / static_cast<std::uint64_t>(type_size(type));
+}
+
 }  // namespace passim

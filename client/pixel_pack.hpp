@@ -2,6 +2,7 @@
 // (1.2.1: for every type, FLOAT too, A17), convert (A18: round; signed types
 // round(((2^b−1)·f − 1)/2)), addressed by the pack pixel-store modes.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "client/pixel_unpack.hpp"
@@ -17,5 +18,9 @@ void pack_rgba(const std::vector<Rgba>& pixels, int width, int height, GLenum fo
 // integer part as a float.
 void pack_indices(const std::vector<double>& indices, int width, int height, GLenum type, const PixelStore& store,
                   void* out);
+// The elements of `type` that packing a width x height image of `format` addresses under
+// `store`, from the data pointer (the bytes image_bytes counts); 0 for an empty image or a
+// format or type that is not a pixel one.
+std::uint64_t packed_image_elements(int width, int height, GLenum format, GLenum type, const PixelStore& store);
 
 }  // namespace passim

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "client/pixel_unpack.hpp"
@@ -19,15 +20,19 @@
 namespace passim {
 namespace {
 
-// Output scratch for query calls replayed from a trace.
+// The results of the call running under run_collecting (this thread's): where its output
+// arguments point and its return value goes.
+thread_local CallResults* collecting = nullptr;
+
+// The GL type of an output element the entry point writes (void: the row's `type` argument).
 template <class T>
-T* output_scratch() {
-  if constexpr (std::is_void_v<T>) {
-    return output_scratch<std::byte>();
-  } else {
-    static thread_local T buffer[kOutputScratchElements];
-    return buffer;
-  }
+constexpr GLenum output_type() {
+  if constexpr (std::is_same_v<T, GLfloat>) return GL_FLOAT;
+  else if constexpr (std::is_same_v<T, GLdouble>) return GL_DOUBLE;
+  else if constexpr (std::is_same_v<T, GLint>) return GL_INT;
+  else if constexpr (std::is_same_v<T, GLuint>) return GL_UNSIGNED_INT;
+  else if constexpr (std::is_same_v<T, GLboolean>) return GL_UNSIGNED_BYTE;
+  else return 0;
 }
 
 template <class T>
@@ -37,7 +42,12 @@ T arg(const Value& v) {
   } else if constexpr (std::is_pointer_v<T> && std::is_const_v<std::remove_pointer_t<T>>) {
     return v.bytes ? reinterpret_cast<T>(v.bytes->data()) : nullptr;
   } else if constexpr (std::is_pointer_v<T>) {
-    return static_cast<T>(output_scratch<std::remove_pointer_t<T>>());
+    // An output argument: its room, made by the runner before the call (`i`: which output).
+    if (!collecting || v.i < 0 || static_cast<std::size_t>(v.i) >= collecting->outputs.size())
+      throw std::logic_error("an output argument without room for it (the call was not run by run_collecting)");
+    CallOutput& out = collecting->outputs[static_cast<std::size_t>(v.i)];
+    if constexpr (output_type<std::remove_pointer_t<T>>() != 0) out.type = output_type<std::remove_pointer_t<T>>();
+    return reinterpret_cast<T>(out.bytes.data());
   } else if constexpr (std::is_floating_point_v<T>) {
     return static_cast<T>(v.d);
   } else {
@@ -52,7 +62,15 @@ struct Invoker<MF> {
   static void call(Context& c, std::span<const Value> v) { call_with(c, v, std::index_sequence_for<A...>{}); }
   template <std::size_t... I>
   static void call_with(Context& c, [[maybe_unused]] std::span<const Value> v, std::index_sequence<I...>) {
-    (c.*MF)(arg<A>(v[I])...);
+    if constexpr (std::is_void_v<R>) {
+      (c.*MF)(arg<A>(v[I])...);
+    } else {
+      const R r = (c.*MF)(arg<A>(v[I])...);
+      if (!collecting) return;
+      collecting->returned = true;
+      if constexpr (std::is_pointer_v<R>) collecting->value.set_str(r ? reinterpret_cast<const char*>(r) : "");
+      else collecting->value.i = static_cast<std::int64_t>(r);
+    }
   }
   static constexpr std::size_t arity = sizeof...(A);
   static constexpr bool returns = !std::is_void_v<R>;
@@ -126,6 +144,10 @@ std::vector<CallInfo::Param> parse_signature(std::string_view call, std::string_
         if (b > a) words.push_back(inner.substr(a, b - a));
         a = b + 1;
       }
+      if (words.size() == 1 && words[0] == "state" && p.kind == 'O') {
+        p.length = Length::State;
+        continue;
+      }
       if (words.size() < 2 || words.size() > 4 || (words[0] != "image" && words[0] != "bitmap"))
         bad_row(call, fmt::format("rule '{}' is not {{image w [h [d]]}} or {{bitmap w h}}", rule));
       p.length = words[0] == "image" ? Length::Image : Length::Bitmap;
@@ -148,8 +170,11 @@ std::vector<CallInfo::Param> parse_signature(std::string_view call, std::string_
   return params;
 }
 
+using StateElements = std::uint64_t (*)(const Context&, std::span<const Value>, std::size_t);
+
 template <auto MF>
-CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum client_array = 0) {
+CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum client_array = 0,
+             StateElements state_elements = nullptr) {
   CallInfo info;
   info.name = name;
   info.signature = sig;
@@ -163,6 +188,10 @@ CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum
   info.invoke = &Invoker<MF>::call;
   info.returns_value = Invoker<MF>::returns;
   info.params = parse_signature(name, sig);
+  info.state_elements = state_elements;
+  for (const CallInfo::Param& p : info.params)
+    if ((p.length == Length::State) != (state_elements != nullptr && p.kind == 'O'))
+      bad_row(name, "an output sized by {state} needs the row's state_elements, and only such rows have one");
   if (info.params.size() != Invoker<MF>::arity)
     bad_row(name, fmt::format("the signature has {} parameters, the entry point {}", info.params.size(),
                               Invoker<MF>::arity));
@@ -170,6 +199,33 @@ CallInfo row(std::string_view name, std::string_view sig, unsigned flags, GLenum
 }
 
 #define ROW(fn, sig, flags) row<&Context::fn>(#fn, sig, flags)
+// A query whose output's size is the GL state's ({state}): `sizer` gives it.
+#define STATE_QUERY_ROW(fn, sig, sizer) row<&Context::fn>(#fn, sig, kQuery, 0, sizer)
+
+// The {state} outputs' sizes (by argument position, as the rows below give them).
+GLenum enum_at(std::span<const Value> v, std::size_t k) { return static_cast<GLenum>(v[k].i); }
+std::uint64_t state_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.state_output_elements(enum_at(v, 0));
+}
+std::uint64_t tex_image_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.tex_image_output_elements(enum_at(v, 0), static_cast<GLint>(v[1].i), enum_at(v, 2), enum_at(v, 3));
+}
+std::uint64_t color_table_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.color_table_output_elements(enum_at(v, 0), enum_at(v, 1), enum_at(v, 2));
+}
+std::uint64_t filter_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.filter_output_elements(enum_at(v, 0), enum_at(v, 1), enum_at(v, 2), 0);
+}
+std::uint64_t separable_elements(const Context& c, std::span<const Value> v, std::size_t param) {
+  // row, column; the span argument is unused by GL 1.2 (nothing written).
+  return param == 5 ? 0 : c.filter_output_elements(enum_at(v, 0), enum_at(v, 1), enum_at(v, 2), param == 3 ? 1 : 2);
+}
+std::uint64_t histogram_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.histogram_output_elements(enum_at(v, 2), enum_at(v, 3));
+}
+std::uint64_t minmax_elements(const Context& c, std::span<const Value> v, std::size_t) {
+  return c.minmax_output_elements(enum_at(v, 2), enum_at(v, 3));
+}
 // A client-array pointer call (§2.8): executed at once, recorded with its data at each draw.
 #define ARRAY_ROW(fn, sig, array) row<&Context::fn>(#fn, sig, kNotCompiled, array)
 
@@ -202,10 +258,10 @@ const std::vector<CallInfo>& table() {
       ROW(glDisable, "e:cap", kNone),
       ROW(glIsEnabled, "e:cap", kNotCompiled),
       ROW(glGetString, "e:name", kNotCompiled),
-      ROW(glGetIntegerv, "e:pname Op:params", kQuery),
-      ROW(glGetFloatv, "e:pname Op:params", kQuery),
-      ROW(glGetDoublev, "e:pname Op:params", kQuery),
-      ROW(glGetBooleanv, "e:pname Op:params", kQuery),
+      STATE_QUERY_ROW(glGetIntegerv, "e:pname O{state}:params", state_elements),
+      STATE_QUERY_ROW(glGetFloatv, "e:pname O{state}:params", state_elements),
+      STATE_QUERY_ROW(glGetDoublev, "e:pname O{state}:params", state_elements),
+      STATE_QUERY_ROW(glGetBooleanv, "e:pname O{state}:params", state_elements),
       ROW(glHint, "e:target e:mode", kNone),
       ROW(glFlush, "", kNotCompiled),
       ROW(glFinish, "", kNotCompiled),
@@ -330,7 +386,7 @@ const std::vector<CallInfo>& table() {
       ROW(glCopyTexImage2D, "e:target i:level e:internalformat i:x i:y i:width i:height i:border", kNone),
       ROW(glCopyTexSubImage1D, "e:target i:level i:xoffset i:x i:y i:width", kNone),
       ROW(glCopyTexSubImage2D, "e:target i:level i:xoffset i:yoffset i:x i:y i:width i:height", kNone),
-      ROW(glGetTexImage, "e:target i:level e:format e:type O:pixels", kQuery),
+      STATE_QUERY_ROW(glGetTexImage, "e:target i:level e:format e:type O{state}:pixels", tex_image_elements),
       ROW(glTexParameteri, "e:target e:pname x:param", kNone),
       ROW(glTexParameterf, "e:target e:pname y:param", kNone),
       ROW(glTexParameterfv, "e:target e:pname Fp:params", kNone),
@@ -365,9 +421,9 @@ const std::vector<CallInfo>& table() {
       ROW(glColorTableParameterfv, "e:target e:pname F4:params", kNone),
       ROW(glGetColorTableParameteriv, "e:target e:pname Op:params", kQuery),
       ROW(glCopyColorSubTable, "e:target i:start i:x i:y i:width", kNone),
-      ROW(glGetColorTable, "e:target e:format e:type O:table", kQuery),
-      ROW(glGetConvolutionFilter, "e:target e:format e:type O:image", kQuery),
-      ROW(glGetSeparableFilter, "e:target e:format e:type O:row O:column O:span", kQuery),
+      STATE_QUERY_ROW(glGetColorTable, "e:target e:format e:type O{state}:table", color_table_elements),
+      STATE_QUERY_ROW(glGetConvolutionFilter, "e:target e:format e:type O{state}:image", filter_elements),
+      STATE_QUERY_ROW(glGetSeparableFilter, "e:target e:format e:type O{state}:row O{state}:column O{state}:span", separable_elements),
       ROW(glCopyConvolutionFilter1D, "e:target e:internalformat i:x i:y i:width", kNone),
       ROW(glConvolutionFilter1D, "e:target e:internalformat i:width e:format e:type V{image width}:image", kNone),
       ROW(glConvolutionFilter2D, "e:target e:internalformat i:width i:height e:format e:type V{image width height}:image", kNone),
@@ -377,10 +433,10 @@ const std::vector<CallInfo>& table() {
       ROW(glConvolutionParameterfv, "e:target e:pname Fp:params", kNone),
       ROW(glHistogram, "e:target i:width e:internalformat z:sink", kNone),
       ROW(glResetHistogram, "e:target", kNone),
-      ROW(glGetHistogram, "e:target z:reset e:format e:type O:values", kQuery),
+      STATE_QUERY_ROW(glGetHistogram, "e:target z:reset e:format e:type O{state}:values", histogram_elements),
       ROW(glMinmax, "e:target e:internalformat z:sink", kNone),
       ROW(glResetMinmax, "e:target", kNone),
-      ROW(glGetMinmax, "e:target z:reset e:format e:type O:values", kQuery),
+      STATE_QUERY_ROW(glGetMinmax, "e:target z:reset e:format e:type O{state}:values", minmax_elements),
       // fog
       ROW(glFogf, "e:pname y:param", kNone),
       ROW(glFogi, "e:pname x:param", kNone),
@@ -614,6 +670,7 @@ std::string describe_call(const CallInfo& info) {
         break;
       case Length::Bitmap: out += fmt::format("[bitmap {}x{}]", arg(p.dims[0]), arg(p.dims[1])); break;
       case Length::Any: if (p.kind != 'O') out += "[read at each draw]"; break;
+      case Length::State: out += "[as the GL's state sizes it]"; break;
       case Length::None: break;
     }
   }
@@ -737,9 +794,31 @@ std::uint64_t param_elements_needed(const CallInfo& info, std::size_t index, con
       return w <= 0 || h <= 0 ? 0 : bitmap_bytes(w, h, store);
     }
     case Length::None:
-    case Length::Any: return 0;
+    case Length::Any:
+    case Length::State: return 0;  // output sizes: output_elements_needed
   }
   return 0;
+}
+
+std::uint64_t output_elements_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done,
+                                     const Context& ctx) {
+  const CallInfo::Param& p = info.params[index];
+  if (p.length == Length::State) return info.state_elements(ctx, done, index);
+  // Images are packed under the pack modes (§4.3.2).
+  return param_elements_needed(info, index, done, ctx.pack_store());
+}
+
+bool CallInfo::has_outputs() const {
+  return std::any_of(params.begin(), params.end(), [](const Param& p) { return p.kind == 'O'; });
+}
+
+void run_collecting(const CallInfo& info, Context& ctx, std::span<const Value> args, CallResults& results) {
+  struct Collecting {
+    explicit Collecting(CallResults& r) : previous(collecting) { collecting = &r; }
+    ~Collecting() { collecting = previous; }
+    CallResults* previous;
+  } scope(results);
+  info.invoke(ctx, args);
 }
 
 bool param_may_be_null(const CallInfo::Param& p) { return p.length == Length::Image || p.length == Length::Bitmap; }

@@ -55,7 +55,10 @@ struct Value {
 //                    the arguments `format` and `type`, reads under the pixel-store modes (§3.6.4)
 //   {bitmap w h}     the bytes of a bitmap of those dimensions (§3.6.4, type BITMAP)
 //   *                not known at the call (client-array pointers: read at each draw)
-enum class Length : std::uint8_t { None, Fixed, ByPname, ByArgument, Image, Bitmap, Any };
+//   {state}          (outputs) what the GL's state says the call writes: a texture level's
+//                    image, a colour table, a filter, the histogram's or minmax's values. The
+//                    row's `state_elements` computes it.
+enum class Length : std::uint8_t { None, Fixed, ByPname, ByArgument, Image, Bitmap, Any, State };
 
 struct CallInfo {
   std::string_view name;
@@ -73,11 +76,15 @@ struct CallInfo {
   bool reads_client_arrays = false;
   void (*invoke)(Context&, std::span<const Value>) = nullptr;
   bool returns_value = false;
-  bool query = false;  // has output arguments: never recorded or compiled
+  bool query = false;  // has output arguments: never compiled (§5.4); recorded with {} for them
   // Client-array pointer calls: the array they set (recorded with its data at each draw;
   // InterleavedArrays sets several, its row says GL_VERTEX_ARRAY); 0 for others.
   GLenum client_array = 0;
   bool recorded_at_draw() const { return client_array != 0; }
+  // For {state} outputs: the elements output parameter `param` receives, from the context's
+  // state and the arguments before it.
+  std::uint64_t (*state_elements)(const Context&, std::span<const Value>, std::size_t param) = nullptr;
+  bool has_outputs() const;
 
   struct Param {
     char kind = 0;
@@ -94,9 +101,23 @@ struct CallInfo {
   int param_index(std::string_view name) const;
 };
 
-// Output arguments of calls replayed from a trace are written into a scratch area of this many
-// elements; a call asking for more is refused before it runs.
-inline constexpr std::uint64_t kOutputScratchElements = 65536;
+// What a call run from a trace returned and wrote into its output arguments (queries, and
+// glGenTextures): run_collecting() fills it.
+struct CallOutput {
+  std::size_t param = 0;
+  GLenum type = 0;  // the element type written (GL_INT, GL_FLOAT, ... or the `type` argument's)
+  std::uint64_t elements = 0;
+  std::vector<std::byte> bytes;  // room for `elements` of the widest type the call may write
+};
+struct CallResults {
+  bool returned = false;
+  Value value;  // the return value: `i`, or `text` for glGetString
+  std::vector<CallOutput> outputs;
+};
+// Runs a row's entry point with its output arguments written into `results.outputs` (one per
+// output parameter, in order, sized by the caller from the row's length rules) and its return
+// value kept.
+void run_collecting(const CallInfo& info, Context& ctx, std::span<const Value> args, CallResults& results);
 
 // nullptr when no such call is known.
 const CallInfo* find_call(std::string_view name);
@@ -124,6 +145,10 @@ GLenum param_element_type(const CallInfo& info, std::size_t index, const std::ve
 // before reading (bad format, type or size). Checked 64-bit arithmetic: SizeOverflow.
 std::uint64_t param_elements_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done,
                                     const PixelStore& store);
+// The elements output parameter `index` receives, images under the
+// context's pack modes, {state} outputs from its state. Checked arithmetic: SizeOverflow.
+std::uint64_t output_elements_needed(const CallInfo& info, std::size_t index, const std::vector<Value>& done,
+                                     const Context& ctx);
 // Whether a null pointer is valid for the parameter (an image or bitmap: no data).
 bool param_may_be_null(const CallInfo::Param& p);
 

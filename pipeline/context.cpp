@@ -126,7 +126,7 @@ bool Context::intercept_values(const CallInfo& info, std::vector<Value>&& values
   const std::int64_t last_element = info.reads_client_arrays ? last_array_element(info, values) : -1;
   if (last_element >= 0 && (sink_ || (compiling_list_ != 0 && info.compiled_into_lists)))
     check_array_bounds(last_element);
-  if (sink_ && !info.query && !info.recorded_at_draw()) {
+  if (sink_ && !info.recorded_at_draw()) {
     if (in_begin_ && info.reads_client_arrays && last_element >= 0) {
       // §2.6.3: no pointer call may come between Begin and End, so an ArrayElement there is
       // recorded as the calls it amounts to, as a list compiles it.

@@ -374,12 +374,25 @@ class Context {
   void set_source_location(std::string where) { where_ = std::move(where); }
   // The colour buffer a name (GL_FRONT/GL_BACK...) reads from; nullptr when absent.
   const ColorPlane* color_buffer(GLenum which) const;
+  // The buffer glReadPixels reads (GL_READ_BUFFER), without a GL call (which a recorder would record).
+  GLenum read_buffer() const { return pixel_.read_buffer; }
+  GLenum draw_buffer() const { return fb_control_.draw_buffer; }  // GL_DRAW_BUFFER, likewise
   // The trace replayer tells how many bytes lie behind the data it just gave a pointer call
   // (for bounds checks): the arrays now pointing into [data, data + bytes) take it as theirs
   // (a pointer call sets one, InterleavedArrays several) and are returned. None when the call
   // raised an error and had no effect, so the replayer keeps the earlier data alive.
   std::vector<GLenum> adopt_client_array_data(const void* data, std::size_t bytes);
   const PixelStore& unpack_store() const { return pixel_store_.unpack; }
+  const PixelStore& pack_store() const { return pixel_store_.pack; }
+  // The elements the image queries write with the state as it is (the call table's {state}
+  // outputs, sized before the call runs); 0 where the call would raise an error and write nothing.
+  std::uint64_t state_output_elements(GLenum pname) const;  // glGet{Integer,Float,Double,Boolean}v
+  std::uint64_t tex_image_output_elements(GLenum target, GLint level, GLenum format, GLenum type) const;
+  std::uint64_t color_table_output_elements(GLenum target, GLenum format, GLenum type) const;
+  // `part`: 0 the filter's image, 1 a separable filter's row, 2 its column.
+  std::uint64_t filter_output_elements(GLenum target, GLenum format, GLenum type, int part) const;
+  std::uint64_t histogram_output_elements(GLenum format, GLenum type) const;
+  std::uint64_t minmax_output_elements(GLenum format, GLenum type) const;
   // The texture object bound to a target (GL_TEXTURE_1D/2D); nullptr for another target.
   const TextureObject* bound_texture(GLenum target) const;
   // Bits of each fragment colour channel (A26: alpha carried at RGB precision when the

@@ -132,7 +132,7 @@ void Context::glCopyColorSubTable(GLenum target, GLsizei start, GLint x, GLint y
 }
 
 void Context::glGetColorTable(GLenum target, GLenum format, GLenum type, void* table) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, format, type, table)
   const int index = table_index(target);
   if (index < 0 || !is_query_image_format(format, type)) return set_error(GL_INVALID_ENUM);
   const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
@@ -153,7 +153,7 @@ void Context::glColorTableParameterfv(GLenum target, GLenum pname, const GLfloat
 }
 
 void Context::glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, pname, params)
   const int index = table_index(target);
   if (index < 0) return set_error(GL_INVALID_ENUM);
   const ColorTable& t = transfer_.tables[static_cast<std::size_t>(index)];
@@ -285,7 +285,7 @@ void Context::glCopyConvolutionFilter1D(GLenum target, GLenum internalformat, GL
 }
 
 void Context::glGetConvolutionFilter(GLenum target, GLenum format, GLenum type, void* image) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, format, type, image)
   const ConvolutionFilter* f = target == GL_CONVOLUTION_1D   ? &transfer_.filter_1d
                                : target == GL_CONVOLUTION_2D ? &transfer_.filter_2d
                                                              : nullptr;
@@ -296,7 +296,7 @@ void Context::glGetConvolutionFilter(GLenum target, GLenum format, GLenum type, 
 }
 
 void Context::glGetSeparableFilter(GLenum target, GLenum format, GLenum type, void* row, void* column, void* span) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, format, type, row, column, span)
   (void)span;  // unused by GL 1.2 (ARB_imaging)
   if (target != GL_SEPARABLE_2D || !is_query_image_format(format, type)) return set_error(GL_INVALID_ENUM);
   const ConvolutionFilter& f = transfer_.filter_separable;
@@ -370,7 +370,7 @@ void Context::glResetHistogram(GLenum target) {
 }
 
 void Context::glGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, reset, format, type, values)
   if (target != GL_HISTOGRAM) return set_error(GL_INVALID_ENUM);
   if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
     return set_error(GL_INVALID_ENUM);
@@ -424,7 +424,7 @@ void Context::glResetMinmax(GLenum target) {
 }
 
 void Context::glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, reset, format, type, values)
   if (target != GL_MINMAX) return set_error(GL_INVALID_ENUM);
   if (format_components(format) == 0 || format == GL_DEPTH_COMPONENT || !is_pixel_type(type))
     return set_error(GL_INVALID_ENUM);
@@ -450,6 +450,40 @@ void Context::glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum 
     pack_rgba({m.min, m.max}, 2, 1, format, type, PixelStore{false, false, 0, 0, 0, 1}, values);
   }
   if (reset) glResetMinmax(GL_MINMAX);
+}
+
+
+// ---------------------------------------------------------------- what the queries write
+
+std::uint64_t Context::color_table_output_elements(GLenum target, GLenum format, GLenum type) const {
+  const int index = table_index(target);
+  if (index < 0) return 0;
+  const auto& entries = transfer_.tables[static_cast<std::size_t>(index)].entries;
+  return packed_image_elements(static_cast<int>(entries.size()), 1, format, type, pixel_store_.pack);
+}
+
+std::uint64_t Context::filter_output_elements(GLenum target, GLenum format, GLenum type, int part) const {
+  if (part == 0) {
+    const ConvolutionFilter* f = target == GL_CONVOLUTION_1D   ? &transfer_.filter_1d
+                                 : target == GL_CONVOLUTION_2D ? &transfer_.filter_2d
+                                                               : nullptr;
+    return f ? packed_image_elements(f->width, f->height, format, type, pixel_store_.pack) : 0;
+  }
+  if (target != GL_SEPARABLE_2D) return 0;
+  const ConvolutionFilter& f = transfer_.filter_separable;
+  return packed_image_elements(static_cast<int>((part == 1 ? f.row : f.column).size()), 1, format, type, pixel_store_.pack);
+}
+
+std::uint64_t Context::histogram_output_elements(GLenum format, GLenum type) const {
+  // glGetHistogram writes the counts contiguously, a group per entry.
+  if (!is_pixel_type(type)) return 0;
+  return transfer_.histogram.counts.size() * static_cast<std::uint64_t>(format_components(format));
+}
+
+std::uint64_t Context::minmax_output_elements(GLenum format, GLenum type) const {
+  // Two groups: the minimum, then the maximum.
+  if (!is_pixel_type(type)) return 0;
+  return 2 * static_cast<std::uint64_t>(format_components(format));
 }
 
 }  // namespace passim

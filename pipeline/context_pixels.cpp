@@ -604,7 +604,7 @@ void Context::glDrawPixels(GLsizei width, GLsizei height, GLenum format, GLenum 
 
 void Context::glReadPixels(GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type,
                            void* pixels) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(x, y, width, height, format, type, pixels)
   if (width < 0 || height < 0) return set_error(GL_INVALID_VALUE);
   if (!is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
   if (format == GL_COLOR_INDEX) return set_error(GL_INVALID_OPERATION);  // RGBA mode

@@ -357,8 +357,14 @@ GLint to_integer(double v, bool is_color) {
 }
 }  // namespace
 
+std::uint64_t Context::state_output_elements(GLenum pname) const {
+  std::vector<double> v;
+  bool is_color = false;
+  return get_state(pname, v, is_color) ? v.size() : 0;
+}
+
 void Context::glGetIntegerv(GLenum pname, GLint* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(pname, params)
   std::vector<double> v;
   bool is_color = false;
   if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
@@ -366,7 +372,7 @@ void Context::glGetIntegerv(GLenum pname, GLint* params) {
 }
 
 void Context::glGetFloatv(GLenum pname, GLfloat* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(pname, params)
   std::vector<double> v;
   bool is_color = false;
   if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
@@ -374,7 +380,7 @@ void Context::glGetFloatv(GLenum pname, GLfloat* params) {
 }
 
 void Context::glGetDoublev(GLenum pname, GLdouble* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(pname, params)
   std::vector<double> v;
   bool is_color = false;
   if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);
@@ -382,7 +388,7 @@ void Context::glGetDoublev(GLenum pname, GLdouble* params) {
 }
 
 void Context::glGetBooleanv(GLenum pname, GLboolean* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(pname, params)
   std::vector<double> v;
   bool is_color = false;
   if (!get_state(pname, v, is_color)) return set_error(GL_INVALID_ENUM);

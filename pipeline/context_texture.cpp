@@ -630,8 +630,15 @@ void Context::glCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLi
   copy_tex_sub_image(target, 2, level, xoffset, yoffset, x, y, width, height);
 }
 
+std::uint64_t Context::tex_image_output_elements(GLenum target, GLint level, GLenum format, GLenum type) const {
+  const TextureObject* tex = bound_texture(target);
+  if (!tex || level < 0 || static_cast<std::size_t>(level) >= tex->levels.size()) return 0;
+  const TextureLevel& l = tex->levels[static_cast<std::size_t>(level)];
+  return l.defined() ? packed_image_elements(l.width, l.height, format, type, pixel_store_.pack) : 0;
+}
+
 void Context::glGetTexImage(GLenum target, GLint level, GLenum format, GLenum type, void* pixels) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, level, format, type, pixels)
   TextureObject* tex = texture_for(target);
   if (!tex) return set_error(GL_INVALID_ENUM);
   if (!is_texture_format(format) || !is_pixel_type(type)) return set_error(GL_INVALID_ENUM);
@@ -747,7 +754,7 @@ void Context::glTexParameterfv(GLenum target, GLenum pname, const GLfloat* param
 }
 
 void Context::glGetTexParameterfv(GLenum target, GLenum pname, GLfloat* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, pname, params)
   const TextureObject* tex = texture_for(target);
   if (!tex) return set_error(GL_INVALID_ENUM);
   switch (pname) {
@@ -776,7 +783,7 @@ void Context::glGetTexParameterfv(GLenum target, GLenum pname, GLfloat* params) 
 }
 
 void Context::glGetTexParameteriv(GLenum target, GLenum pname, GLint* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, pname, params)
   GLfloat v[4] = {0, 0, 0, 0};
   const std::size_t errors = error_log_.size();
   glGetTexParameterfv(target, pname, v);
@@ -789,7 +796,7 @@ void Context::glGetTexParameteriv(GLenum target, GLenum pname, GLint* params) {
 }
 
 void Context::glGetTexLevelParameteriv(GLenum target, GLint level, GLenum pname, GLint* params) {
-  PASSIM_ENTRY()
+  PASSIM_ENTRY(target, level, pname, params)
   const TextureObject* tex = texture_for(target);
   if (!tex) return set_error(GL_INVALID_ENUM);
   if (level < 0) return set_error(GL_INVALID_VALUE);

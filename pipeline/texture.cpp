@@ -134,6 +134,21 @@ const TexelDecoding* texel_decoding(const InternalFormat& f) {
       decode_texel(f, t, o);
       d.values[k * codes + c] = o[k];
     }
+  // The division form, where it gives every value of the table to the bit.
+  d.by_division = true;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double* v = &d.values[k * codes];
+    d.is_constant[k] = std::all_of(v, v + codes, [&](double x) { return x == v[0]; });
+    if (d.is_constant[k]) {
+      d.constant[k] = v[0];
+      continue;
+    }
+    int width = 1;
+    while (width < widest && v[(std::size_t{1} << width) - 1] != 1.0) ++width;
+    d.divisor[k] = static_cast<double>((std::uint32_t{1} << width) - 1);
+    for (std::size_t c = 0; c < codes && d.by_division; ++c)
+      d.by_division = v[c] == static_cast<double>(c) / d.divisor[k];
+  }
   return &d;
 }
 

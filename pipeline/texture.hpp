@@ -57,6 +57,13 @@ struct TexelDecoding {
   int code_bits = 0;                    // the widest stored component
   std::array<std::uint8_t, 4> source{};  // slot of the code output k reads
   std::vector<double> values;           // 4 << code_bits reals: fixed_to_float of each code
+  // When each output component is a constant or exactly code / (2^w − 1) (IEEE division; checked
+  // against `values` for every code), the fast samplers divide rather than read the table: a
+  // gather from it costs more than the division on CPUs with the gather-data-sampling fix.
+  bool by_division = false;
+  std::array<double, 4> divisor{1.0, 1.0, 1.0, 1.0};  // 2^w − 1; 1 for a constant component
+  std::array<double, 4> constant{};                   // a constant component's value
+  std::array<bool, 4> is_constant{};
   // REPLACE's codes (Table 3.18 with A4's rounding: float_to_fixed of the value) at the
   // fragment widths `bits`, laid out as `values`; made on first use per widths.
   const std::vector<std::uint16_t>& replace_codes(const std::array<int, 4>& bits) const;

@@ -32,12 +32,6 @@ std::vector<PlaneView> planes_of(const Framebuffer& fb) {
   return out;
 }
 
-std::uint64_t fnv1a(const std::byte* p, std::size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t k = 0; k < n; ++k) h = (h ^ static_cast<std::uint64_t>(p[k])) * 1099511628211ull;
-  return h;
-}
-
 std::int64_t element(const PlaneView& p, std::size_t i) {
   const std::byte* e = p.data + i * p.element_bytes;
   switch (p.element_bytes) {
@@ -79,7 +73,7 @@ struct StopAtCheckpoint {};
 std::vector<std::pair<std::string, std::uint64_t>> plane_digests(const Context& ctx) {
   std::vector<std::pair<std::string, std::uint64_t>> out;
   for (const PlaneView& p : planes_of(ctx.framebuffer()))
-    out.emplace_back(p.name, fnv1a(p.data, p.elements * p.element_bytes));
+    out.emplace_back(p.name, fnv1a({p.data, p.elements * p.element_bytes}));
   return out;
 }
 

@@ -142,16 +142,20 @@ __attribute__((target("avx2"))) inline __m256d load_4(const double* x, int n) {
   return _mm256_load_pd(padded);
 }
 
-// A texel's four values: its codes in the slots the outputs read, each offset to its output's
-// table, gathered (VGATHERDPD) — the reals the scalar loop looks up one by one.
-__attribute__((target("avx2"))) inline __m256d texel_values_4(const std::array<std::uint8_t, 4>& source,
-                                                              const double* tables, __m128i table_offsets,
-                                                              const std::uint16_t* t) {
+// A texel's four values (the decoding's source slots) by its division form
+// (TexelDecoding::by_division): each code over its divisor, the constant components blended in.
+// IEEE division, so the very values of the table, checked for every code when the decoding was
+// made. (Not a gather from the table: slower than the division on CPUs with the gather-data-
+// sampling mitigation.)
+struct DivisionDecoding {
+  __m256d divisor, constant, is_constant;
+};
+__attribute__((target("avx2"))) inline __m256d texel_values_by_division_4(const std::array<std::uint8_t, 4>& source,
+                                                                          const DivisionDecoding& d,
+                                                                          const std::uint16_t* t) {
   const __m128i codes = _mm_setr_epi32(t[source[0]], t[source[1]], t[source[2]], t[source[3]]);
-  // (The masked form with every lane set: the plain one leaves its source undefined, which
-  // GCC 12 warns of.)
-  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), tables, _mm_add_epi32(codes, table_offsets), all, 8);
+  const __m256d quotient = _mm256_div_pd(_mm256_cvtepi32_pd(codes), d.divisor);
+  return _mm256_blendv_pd(quotient, d.constant, d.is_constant);
 }
 
 // Lanes whose two indices both lie in [−border, size + border): linear_footprint's test.
@@ -184,8 +188,11 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
   const std::uint16_t* origin =
       l.texels + 4 * (static_cast<std::size_t>(l.row_border) * row + static_cast<std::size_t>(l.border));
   const TexelDecoding& d = *l.decoding;
-  const double* tables = d.values.data();
-  const __m128i table_offsets = _mm_setr_epi32(0, 1 << d.code_bits, 2 << d.code_bits, 3 << d.code_bits);
+  const DivisionDecoding division{
+      _mm256_setr_pd(d.divisor[0], d.divisor[1], d.divisor[2], d.divisor[3]),
+      _mm256_setr_pd(d.constant[0], d.constant[1], d.constant[2], d.constant[3]),
+      _mm256_castsi256_pd(_mm256_setr_epi64x(d.is_constant[0] ? -1 : 0, d.is_constant[1] ? -1 : 0,
+                                             d.is_constant[2] ? -1 : 0, d.is_constant[3] ? -1 : 0))};
 
   std::uint64_t filtered = 0;
   for (int i0 = 0; i0 < span.count; i0 += 4) {
@@ -240,14 +247,14 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
       const bool ok = (lanes >> k) & 1;
       general[i0 + k] = !ok;
       if (!ok) continue;
-      const __m256d v00 = texel_values_4(d.source, tables, table_offsets, origin + o00[k]);
-      const __m256d v10 = texel_values_4(d.source, tables, table_offsets, origin + o10[k]);
+      const __m256d v00 = texel_values_by_division_4(d.source, division, origin + o00[k]);
+      const __m256d v10 = texel_values_by_division_4(d.source, division, origin + o10[k]);
       __m256d r;
       if (two) {
         r = _mm256_mul_pd(_mm256_broadcast_sd(w00 + k), v00);
         r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w10 + k), v10));
-        const __m256d v01 = texel_values_4(d.source, tables, table_offsets, origin + o01[k]);
-        const __m256d v11 = texel_values_4(d.source, tables, table_offsets, origin + o11[k]);
+        const __m256d v01 = texel_values_by_division_4(d.source, division, origin + o01[k]);
+        const __m256d v11 = texel_values_by_division_4(d.source, division, origin + o11[k]);
         r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w01 + k), v01));
         r = _mm256_add_pd(r, _mm256_mul_pd(_mm256_broadcast_sd(w11 + k), v11));
       } else {
@@ -271,7 +278,7 @@ __attribute__((target("avx2"))) std::uint64_t linear_replace_span_avx2(const Lev
 std::uint64_t linear_replace_span(const LevelGeometry& l, const FragmentSpan& span, const std::array<int, 4>& bits,
                                   const std::array<bool, 4>& replace, std::uint8_t* general, Counters& counters) {
 #if defined(PASSIM_HAVE_AVX2_KERNEL)
-  if (use_avx2()) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
+  if (use_avx2() && l.decoding->by_division) return linear_replace_span_avx2(l, span, bits, replace, general, counters);
 #endif
   return linear_replace_span_scalar(l, span, bits, replace, general, counters);
 }

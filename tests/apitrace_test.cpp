@@ -15,6 +15,7 @@
 
 #include "trace_io/apitrace_reader.hpp"
 #include "trace_io/apitrace_replay.hpp"
+#include "trace_io/query_log.hpp"
 #include "trace_io/call_set.hpp"
 #include "reports/report.hpp"
 
@@ -341,6 +342,39 @@ TEST_P(RecordedAgainstMesa, EightBitsWithinOneStep) {
 
 INSTANTIATE_TEST_SUITE_P(Apitrace, RecordedAgainstMesa,
                          ::testing::Values("blend_masks", "texgen_projective", "pixels_zoom"));
+
+// Issue 20 item 3: the program's own glReadPixels runs on replay and --queries keeps what it
+// returned: the bytes Mesa returned to the program when it was recorded (the reference PNG),
+// to the code, for the programs that agree with Mesa everywhere (above).
+TEST(ApitraceQueries, ReadPixelsReturnsWhatMesaReturned) {
+  for (const std::string name : {"blend_masks", "texgen_projective"}) {
+    const fs::path dir = fs::temp_directory_path() / ("passim-queries-" + name);
+    fs::remove_all(dir);
+    QueryLog log(dir);
+    ApitraceOptions o;
+    o.profile = "mesa-llvmpipe";
+    o.queries = &log;
+    const ApitraceReplay r = replay_apitrace(kData / (name + ".trace"), o);
+    ASSERT_FALSE(r.error) << *r.error;
+    log.commit();
+    const nlohmann::json queries = log.json()["queries"];
+    const auto read = std::find_if(queries.begin(), queries.end(), [](const nlohmann::json& q) {
+      return q["call"].get<std::string>().starts_with("glReadPixels(");
+    });
+    ASSERT_NE(read, queries.end()) << name;
+    const nlohmann::json& pixels = (*read)["outputs"]["pixels"];
+    int w = 0, h = 0;
+    const std::vector<int> mesa = read_reference(kData / (name + ".png"), w, h);
+    ASSERT_EQ(pixels["elements"], static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) * 4) << name;
+    std::ifstream file(dir / pixels["file"].get<std::string>(), std::ios::binary);
+    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    ASSERT_EQ(bytes.size(), mesa.size()) << name;
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < bytes.size(); ++k) differing += bytes[k] != mesa[k];
+    EXPECT_EQ(differing, 0u) << name;
+    fs::remove_all(dir);
+  }
+}
 
 // GLX 1.4 §3.3.3: the largest available of at least the size asked for, none where none is
 // asked for; --bits, --depth-bits, --accum-bits override (A21: accumulation twice the colour).

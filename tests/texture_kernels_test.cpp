@@ -141,6 +141,7 @@ TEST(TextureKernels, DecodingTablesEqualTheSpecsDivision) {
     const TextureLevel level = random_texels(rng, internal, 5000);
     const TexelDecoding* d = texel_decoding(level.format);
     ASSERT_NE(d, nullptr) << internal;
+    EXPECT_TRUE(d->by_division) << internal;
     for (const std::array<int, 4>& bits : {std::array<int, 4>{8, 8, 8, 8}, std::array<int, 4>{12, 12, 12, 12},
                                            std::array<int, 4>{5, 6, 5, 1}, std::array<int, 4>{16, 16, 16, 16}}) {
       const std::vector<std::uint16_t>& replace = d->replace_codes(bits);
@@ -151,6 +152,11 @@ TEST(TextureKernels, DecodingTablesEqualTheSpecsDivision) {
           const std::size_t entry = (k << d->code_bits) | level.texels[4 * p + d->source[k]];
           ASSERT_EQ(d->values[entry], want[k]) << internal << " texel " << p << " component " << k;
           ASSERT_EQ(replace[entry], float_to_fixed(want[k], bits[k])) << internal << " texel " << p << " component " << k;
+          // The division form the AVX2 LINEAR kernel computes (it is used for every format:
+          // below), against the general sampler's decoding.
+          const double code = static_cast<double>(level.texels[4 * p + d->source[k]]);
+          ASSERT_EQ(d->is_constant[k] ? d->constant[k] : code / d->divisor[k], want[k])
+              << internal << " texel " << p << " component " << k;
         }
       }
     }

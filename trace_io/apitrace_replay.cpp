@@ -126,8 +126,8 @@ class ApitraceReplayer {
 
   void replay_gl(const apitrace::Call& call, const CallInfo* info) {
     const std::string& fn = call.name();
-    if (!info || info->query) {
-      if (info || named_as_query(fn)) {
+    if (!info) {
+      if (named_as_query(fn)) {
         skip(ignored_, call, "a query: no effect on the image");
         return;
       }
@@ -263,6 +263,7 @@ class ApitraceReplayer {
     }
     out_.result.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*out_.result.context, options_.strict, options_.diagnostics);
+    runner_->set_query_log(options_.queries);
     if (options_.record) {
       options_.record->write_header(s);
       out_.result.context->set_call_sink(options_.record);
@@ -359,9 +360,7 @@ class ApitraceReplayer {
   // The draw buffer after call `number` (at a swap: the front buffer, which now shows the frame).
   void snapshot(std::uint64_t number, bool frame_end) {
     Context& ctx = *out_.result.context;
-    GLint draw_buffer = 0;
-    ctx.glGetIntegerv(GL_DRAW_BUFFER, &draw_buffer);
-    GLenum buffer = frame_end ? GL_FRONT : static_cast<GLenum>(draw_buffer);
+    GLenum buffer = frame_end ? GL_FRONT : ctx.draw_buffer();
     if (buffer == GL_FRONT_AND_BACK || buffer == GL_LEFT || buffer == GL_FRONT_LEFT) buffer = GL_FRONT;
     if (buffer == GL_BACK_LEFT) buffer = GL_BACK;
     if (!ctx.color_buffer(buffer)) return;  // GL_NONE: nothing is drawn, nothing to show

@@ -32,6 +32,7 @@ struct ApitraceOptions {
   TraceWriter* record = nullptr;        // write the replay as a canonical .pass (passim convert)
   std::uint64_t max_memory = kDefaultMemoryBudget;  // the run's memory budget (memory_budget.hpp)
   Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
+  class QueryLog* queries = nullptr;   // receives what every query returned (--queries)
 };
 
 struct ApitraceReplay {
@@ -40,7 +41,7 @@ struct ApitraceReplay {
   std::uint64_t frames = 0;  // glXSwapBuffers seen
   // Both also in result.skipped (in call order):
   std::vector<SkippedCall> unsupported;  // calls whose effect passim does not model
-  std::vector<SkippedCall> ignored;      // queries and window-system calls: no effect on the image
+  std::vector<SkippedCall> ignored;      // unknown queries and window-system calls: no effect on the image
   std::optional<std::string> error;      // the replay stopped here (the message names the call)
 };
 

@@ -1,6 +1,7 @@
 // Running one parsed call on a context, with the checks that every trace reader
 // (.pass text, apitrace binary) shares: data long enough for what the call reads,
-// client-array extents, queries skipped, GL errors reported.
+// client-array extents, output arguments given room (queries run with their side effects,
+// their results logged for --queries), GL errors reported.
 #pragma once
 #include <map>
 #include <memory>
@@ -28,14 +29,21 @@ class CallRunner {
   void run(const CallInfo& info, const std::vector<Value>& values, const std::string& where);
   // Reports the GL errors raised since the last report (after drawing outside run()).
   void report_errors();
+  // Where the results of every call that returns a value or writes an output go (may be null).
+  void set_query_log(class QueryLog* log) { queries_ = log; }
 
  private:
-  void check_lengths(const CallInfo& info, const std::vector<Value>& values) const;
+  // Refuses data shorter than the call reads; returns the elements each output parameter
+  // receives (0 for the others).
+  std::vector<std::uint64_t> check_lengths(const CallInfo& info, const std::vector<Value>& values) const;
+  void run_with_outputs(const CallInfo& info, const std::vector<Value>& values, const std::vector<std::uint64_t>& needed,
+                        const std::string& where);
 
   Context& ctx_;
   bool strict_;
   std::ostream* diagnostics_;
   std::size_t reported_errors_ = 0;
+  class QueryLog* queries_ = nullptr;
   std::map<GLenum, std::shared_ptr<const std::vector<std::byte>>> keep_alive_;  // client arrays in use
 };
 

@@ -50,15 +50,25 @@ MachineProfile TraceSettings::machine() const {
 
 // ------------------------------------------------------------------ images
 
+namespace {
+constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ull, kFnvPrime = 0x100000001b3ull;
+}  // namespace
+
 std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_code) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
+  std::uint64_t h = kFnvOffset;
   for (std::uint32_t c : codes) {
     for (int b = 0; b < bytes_per_code; ++b) {
       h ^= (c >> (8 * b)) & 0xFFu;
-      h *= 0x100000001b3ull;
+      h *= kFnvPrime;
     }
   }
   return fmt::format("{:016x}", h);
+}
+
+std::uint64_t fnv1a(std::span<const std::byte> bytes) {
+  std::uint64_t h = kFnvOffset;
+  for (std::byte b : bytes) h = (h ^ static_cast<std::uint64_t>(b)) * kFnvPrime;
+  return h;
 }
 
 CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane, GLenum buffer,
@@ -410,7 +420,6 @@ class Replayer {
     }
     ensure_context();
     result_.context->check_balance();
-    if (options_.diagnostics) *options_.diagnostics << skipped_lines(result_.skipped);
     return std::move(result_);
   }
 
@@ -453,6 +462,7 @@ class Replayer {
     line_ = call_line;
     result_.context->set_pass_end_observer(options_.pass_end);
     runner_ = std::make_unique<CallRunner>(*result_.context, options_.strict, options_.diagnostics);
+    runner_->set_query_log(options_.queries);
     if (options_.record) {
       options_.record->write_header(s);
       result_.context->set_call_sink(options_.record);
@@ -578,9 +588,7 @@ class Replayer {
     if (plane != "color" && plane != "rgb" && plane != "alpha" && plane != "depth" && plane != "stencil")
       fail(fmt::format("@output plane '{}' is not color, rgb, alpha, depth or stencil", plane));
     Context& ctx = *result_.context;
-    GLint read_buffer = 0;
-    ctx.glGetIntegerv(GL_READ_BUFFER, &read_buffer);
-    GLenum buffer = static_cast<GLenum>(read_buffer);
+    GLenum buffer = ctx.read_buffer();
     if (w.size() == 3) {
       auto v = enum_value(w[2]);
       if (!v) fail(fmt::format("unknown buffer '{}'", w[2]));
@@ -770,20 +778,11 @@ class Replayer {
     std::vector<Value> values;
     for (std::size_t k = 0; k < args.size(); ++k) values.push_back(convert(args[k], info->params[k], *info, k, values));
     ensure_context();
-    if (info->query) skip(fn, "a query: its output cannot be replayed");
     try {
       runner_->run(*info, values, fmt::format("{}:{}", name_, line_));
     } catch (const CallRejected& e) {
       fail(e.what());
     }
-  }
-
-  void skip(const std::string& fn, const char* why) {
-    auto it = std::find_if(result_.skipped.begin(), result_.skipped.end(),
-                           [&](const SkippedCall& c) { return c.name == fn; });
-    if (it == result_.skipped.end())
-      it = result_.skipped.insert(it, SkippedCall{fn, 0, static_cast<std::uint64_t>(line_), why});
-    ++it->count;
   }
 
   void report_errors() {

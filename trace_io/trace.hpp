@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <ostream>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,6 +57,7 @@ struct ReplayOptions {
   // Folders besides the trace's own that side files may come from (side_files.hpp).
   std::vector<std::filesystem::path> allow_files;
   Context::PassEndObserver pass_end;  // installed on the replay's context (the cross-check)
+  class QueryLog* queries = nullptr;   // receives what every query returned (--queries)
   // When above 0, the window is at most this wide and high: a larger @framebuffer (or the
   // default 800x600) is cut down to it. For fuzzing, where every run must be quick; the
   // commands never set it.
@@ -78,7 +80,9 @@ struct ReplayResult {
   TraceSettings settings;
   std::unique_ptr<Context> context;
   std::vector<CapturedImage> images;
-  std::vector<SkippedCall> skipped;  // in the order first met; counters.json's "skipped_calls"
+  // In the order first met; counters.json's "skipped_calls". An apitrace replay's: a .pass
+  // trace runs every call it names (an unknown name is an error).
+  std::vector<SkippedCall> skipped;
 };
 
 // Replays a .pass file. Throws TraceError (with file:line) for malformed input,
@@ -98,7 +102,9 @@ struct CaptureRegion {
 // The region must lie inside the framebuffer.
 CapturedImage capture_plane(const Context& ctx, const std::string& name, const std::string& plane,
                             GLenum buffer, CaptureRegion region = {});
+// FNV-1a (64 bits): of codes, each as its `bytes_per_code` low bytes, little-endian; of bytes.
 std::string fnv1a_hex(const std::vector<std::uint32_t>& codes, int bytes_per_code);
+std::uint64_t fnv1a(std::span<const std::byte> bytes);
 
 // Writes a trace: header, then one canonical line per call.
 class TraceWriter final : public CallSink {
