@@ -319,10 +319,10 @@ void Context::rasterize_line_segment(const RasterVertex& a, const RasterVertex& 
   Counters& c = counters();
   TriangleOptions setup_options;
   const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
+  TriangleOptions attributes = setup_options;
+  attributes.flat = lighting_.shade_model == GL_FLAT;
+  attributes.flat_color = flat_color;
   LineOptions options;
-  options.attributes = setup_options;
-  options.attributes.flat = lighting_.shade_model == GL_FLAT;
-  options.attributes.flat_color = flat_color;
   options.width = line_width_of(polygon_.line_width);
   options.depth_offset = depth_offset;
   options.open_end = open_end;
@@ -334,15 +334,15 @@ void Context::rasterize_line_segment(const RasterVertex& a, const RasterVertex& 
     line_stipple_counter_ += line_fragment_count(a, b, options.width, open_end, setup.target.subpixel_bits);
   }
   if (scratch_->lanes) {
-    scratch_->lanes->line(a, b, options, setup, c);
+    scratch_->lanes->line(a, b, attributes, options, setup, c);
     raster_queued_ = true;
     return;
   }
-  rasterize_line(a, b, options, setup.target, scratch_->spans, fragment_sink(), c);
+  rasterize_line(a, b, attributes, options, setup.target, scratch_->spans, fragment_sink(), c);
 }
 
 double Context::polygon_mode_offset(const std::vector<RasterVertex>& win, const RasterTarget& target) const {
-  // §3.5.5 (A7) on the plane of the first three vertices, snapped as for filling (A5); a
+  // §3.5.5 (A7) on the plane of the first three vertices (A34), snapped as for filling (A5); a
   // degenerate first triangle has slope 0.
   const double r = target.depth_bits > 0 ? 1.0 / static_cast<double>(max_code(target.depth_bits)) : 0.0;
   double m = 0.0;
@@ -501,7 +501,7 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   }
   if (work.mode == GL_LINE) {
     // §3.5.4: the boundary edges (an edge starts at a vertex whose flag is true) as connected
-    // segments for the stipple, its counter reset at each polygon (A32); §3.5.5 offset.
+    // segments for the stipple, its counter reset at each polygon (A33); §3.5.5 offset.
     const double offset = polygon_.offset_line ? polygon_mode_offset(win, setup.target) : 0.0;
     line_stipple_counter_ = 0;
     for (std::size_t k = 0; k < win.size(); ++k)

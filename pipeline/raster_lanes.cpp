@@ -156,9 +156,9 @@ void RasterLanes::triangles(const AssembledTriangle* first, const TriangleRows* 
 void RasterLanes::point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass) {
   add(Job{{v, v, v}, TriangleOptions{}, true, size}, 1, setup, pass);
 }
-void RasterLanes::line(const RasterVertex& a, const RasterVertex& b, const LineOptions& options,
-                       const FragmentStagesSetup& setup, Counters& pass) {
-  Job job{{a, b, b}, TriangleOptions{}, false, 1.0};
+void RasterLanes::line(const RasterVertex& a, const RasterVertex& b, const TriangleOptions& attributes,
+                       const LineOptions& options, const FragmentStagesSetup& setup, Counters& pass) {
+  Job job{{a, b, b}, attributes, false, 1.0};
   job.is_line = true;
   job.line_options = options;
   add(job, 1, setup, pass);
@@ -205,7 +205,8 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
         }
       }
     } else if (job.is_line)
-      rasterize_line(job.v[0], job.v[1], job.line_options, target, lane.spans, *lane.stages.first, lane.counters);
+      rasterize_line(job.v[0], job.v[1], job.options, job.line_options, target, lane.spans, *lane.stages.first,
+                     lane.counters);
     else if (job.is_point)
       rasterize_point(job.v[0], job.point_size, target, lane.spans, *lane.stages.first, lane.counters);
     else

@@ -77,8 +77,8 @@ class RasterLanes {
   void triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, const TriangleOptions& options,
                 const FragmentStagesSetup& setup, Counters& pass);
   void point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass);
-  void line(const RasterVertex& a, const RasterVertex& b, const LineOptions& options,
-            const FragmentStagesSetup& setup, Counters& pass);
+  void line(const RasterVertex& a, const RasterVertex& b, const TriangleOptions& attributes,
+            const LineOptions& options, const FragmentStagesSetup& setup, Counters& pass);
   // Queue `count` triangles drawn with `options` but each its own flat colour, by reference:
   // they must stay as they are until the queue is run (queue_serial() has moved on, or
   // pending() is false).
@@ -127,7 +127,7 @@ class RasterLanes {
     const AssembledTriangle* run = nullptr;  // triangles queued by reference: v unused
     const TriangleRows* run_rows = nullptr;  // their rows
     std::size_t run_count = 0;
-    bool is_line = false;  // v[0] → v[1] with line_options
+    bool is_line = false;  // v[0] → v[1] with options (its attributes) and line_options
     LineOptions line_options{};
   };
   using Lane = LaneStages;

@@ -1,4 +1,4 @@
-// Line segment rasterization, OpenGL 1.2.1 §3.4 (A30-A33 of docs/arithmetic.md).
+// Line segment rasterization, OpenGL 1.2.1 §3.4 (A30-A34 of docs/arithmetic.md).
 #include "stages/line_rasterizer.hpp"
 
 #include <algorithm>
@@ -147,7 +147,7 @@ void for_each_line_fragment(const SnappedLine& l, bool open_end, F&& f) {
   }
 }
 
-// Eq. 3.5: t of the pixel centre's projection on the segment, clamped to [0, 1] (A31).
+// Eq. 3.5: t of the pixel centre's projection on the segment, clamped to [0, 1] (A32).
 double line_parameter(const SnappedLine& l, std::int64_t col, std::int64_t row) {
   const Wide dx = l.bx - l.ax, dy = l.by - l.ay;
   const Wide px = (2 * col + 1) * l.S - l.ax, py = (2 * row + 1) * l.S - l.ay;
@@ -169,10 +169,11 @@ std::uint64_t line_fragment_count(const RasterVertex& a, const RasterVertex& b, 
   return n;
 }
 
-void rasterize_line(const RasterVertex& a, const RasterVertex& b, const LineOptions& options,
+void rasterize_line(const RasterVertex& a, const RasterVertex& b, const TriangleOptions& attributes,
+                    const LineOptions& options,
                     const RasterTarget& target, SpanBuffers& buffers, FragmentSink& sink, Counters& counters) {
   const SnappedLine l = snap_line(a, b, options.width, target.subpixel_bits);
-  const TriangleOptions& o = options.attributes;
+  const TriangleOptions& o = attributes;
   const int w = options.width;
   // Eq. 3.6 weights: (1 − t)/wa and t/wb over their sum, for colours, texture coordinates and
   // the fog coordinate; depth is linear in t (eq. 3.7).

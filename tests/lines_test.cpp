@@ -143,6 +143,19 @@ TEST(LineRaster, StripJointsOnceAndLoopCloses) {
   }
 }
 
+// glDrawArrays assembles the same segments: the loop's outline of 16 pixels (as above).
+TEST(LineRaster, DrawArraysLoopClosesToo) {
+  Context ctx(test::small_config(8, 8));
+  test::window_projection(ctx);
+  count_fragments_mode(ctx);
+  const GLfloat square[] = {0.5f, 0.5f, 4.5f, 0.5f, 4.5f, 4.5f, 0.5f, 4.5f};
+  ctx.glEnableClientState(GL_VERTEX_ARRAY);
+  ctx.glVertexPointer(2, GL_FLOAT, 0, square);
+  ctx.glDrawArrays(GL_LINE_LOOP, 0, 4);
+  EXPECT_EQ(written_once(ctx).size(), 16u);
+  EXPECT_EQ(ctx.total_counters().primitives_in, 4u);
+}
+
 // (0.5, 0.5) → (4.5, 0.5), red 0 → 1: fragment i at t = i/4 (eq. 3.5, w = 1 so eq. 3.6 is
 // linear): codes round(255·i/4) = 0, 64 (63.75), 128 (127.5, ties up, A1), 191 (191.25).
 // Flat (§2.13.7): the segment's second vertex, 255 everywhere.
@@ -172,16 +185,16 @@ TEST(LineRaster, PerspectiveCorrectAttributesAndLinearDepth) {
   RasterVertex a, b;
   a.x = 0.5, a.y = 0.5, a.z = 0.0, a.w = 1.0, a.color = Vec4(0, 0, 0, 1), a.tex = Vec4(0, 0, 0, 1), a.eye_z = -1.0;
   b.x = 8.5, b.y = 0.5, b.z = 1.0, b.w = 3.0, b.color = Vec4(1, 0, 0, 1), b.tex = Vec4(1, 0, 0, 1), b.eye_z = -3.0;
-  LineOptions o;
-  o.attributes.texcoords = true;
-  o.attributes.texcoords_used = 1;
-  o.attributes.fog = true;
+  TriangleOptions o;
+  o.texcoords = true;
+  o.texcoords_used = 1;
+  o.fog = true;
   RasterTarget target;
   target.width = target.height = 16;
   SpanBuffers buffers(16);
   CaptureSink sink;
   Counters counters;
-  rasterize_line(a, b, o, target, buffers, sink, counters);
+  rasterize_line(a, b, o, LineOptions{}, target, buffers, sink, counters);
   ASSERT_EQ(sink.fragments.size(), 8u);
   const Captured& f = sink.fragments[4];
   EXPECT_EQ(f.x, 4);
