@@ -369,6 +369,7 @@ const std::vector<CallInfo>& table() {
       ROW(glPolygonOffset, "f:factor f:units", kNone),
       ROW(glPointSize, "f:size", kNone),
       ROW(glLineWidth, "f:width", kNone),
+      ROW(glLineStipple, "i:factor w:pattern", kNone),
       // pixel storage and textures
       ROW(glPixelStorei, "e:pname x:param", kNotCompiled),
       ROW(glPixelStoref, "e:pname y:param", kNotCompiled),

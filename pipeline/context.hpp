@@ -223,6 +223,7 @@ class Context {
   void glPolygonOffset(GLfloat factor, GLfloat units);
   void glPointSize(GLfloat size);
   void glLineWidth(GLfloat width);
+  void glLineStipple(GLint factor, GLushort pattern);
 
   // ---- passes, EXT_debug_marker: context.cpp ----
   void glPushGroupMarkerEXT(GLsizei length, const GLchar* marker);
@@ -462,7 +463,11 @@ class Context {
   void light_pending_vertex(ProcessedVertex& v, int face) const;
   void emit_primitive_vertex(const ProcessedVertex& v);
   void flush_polygon();
-  void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking);
+  // `edge_flags`: whether the vertices' edge flags apply (§2.6.2; false for strips and fans).
+  void draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
+                    bool edge_flags = true);
+  // §3.5.5 for a polygon drawn as lines or points: the polygon offset of its first triangle.
+  double polygon_mode_offset(const std::vector<RasterVertex>& window, const RasterTarget& target) const;
   // draw_polygon's work before rasterization (NaN checks, clipping, window coordinates, facing
   // and culling, lighting the face drawn), reading state only and counting primitives into
   // `counters`: false when nothing is drawn.
@@ -483,6 +488,13 @@ class Context {
   // A drawn polygon's triangle options: the stage setup's, shading and polygon offset.
   TriangleOptions polygon_options(const TriangleOptions& setup_options, const Vec4& flat_color) const;
   void draw_point(const ProcessedVertex& v);
+  // A line segment from a to b (§3.4): clipped, lit (front colours), rasterized.
+  void draw_line(const ProcessedVertex& a, const ProcessedVertex& b);
+  // A segment's window end points rasterized with the current line state, the stipple counter
+  // carried on; depth_offset is added to window z (polygon offset of a polygon drawn as lines).
+  // open_end: b was made by clipping (A31).
+  void rasterize_line_segment(const RasterVertex& a, const RasterVertex& b, const Vec4& flat_color,
+                              double depth_offset, bool open_end = false);
   void array_element_impl(int i);
   void check_array_bounds(std::int64_t max_index) const;
   void compile_array_element(int i, std::vector<Call>& out) const;
@@ -722,6 +734,7 @@ class Context {
   std::vector<std::array<Material, 2>> vertex_materials_;  // materials in force for this Begin/End's vertices
   bool materials_dirty_ = true;
   std::uint64_t prim_vertex_count_ = 0;
+  std::uint64_t line_stipple_counter_ = 0;  // §3.4.2 s: reset at Begin and per separate segment
 
   // display lists
   std::map<GLuint, std::vector<Call>> lists_;

@@ -15,6 +15,7 @@
 #include "pipeline/fixed_point.hpp"
 #include "stages/clipping.hpp"
 #include "stages/lighting.hpp"
+#include "stages/line_rasterizer.hpp"
 #include "stages/rasterizer.hpp"
 
 namespace passim {
@@ -152,9 +153,19 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
   auto& buf = prim_vertices_;
   switch (begin_mode_) {
     case GL_POINTS: draw_point(v); return;
-    case GL_LINES: case GL_LINE_STRIP: case GL_LINE_LOOP:
-      warn_once("line primitives are not rasterized yet: they produce no fragments");
-      if (begin_mode_ == GL_LINES ? (i % 2 == 1) : i >= 1) ++counters().primitives_in;
+    case GL_LINES:
+      buf.push_back(v);
+      if (buf.size() == 2) {
+        line_stipple_counter_ = 0;  // §3.4.2: reset before every separate segment
+        draw_line(buf[0], buf[1]);
+        buf.clear();
+      }
+      return;
+    case GL_LINE_STRIP: case GL_LINE_LOOP:
+      // buf: the previous vertex; for a loop the first vertex before it (closed at End).
+      if (!buf.empty()) draw_line(buf.back(), v);
+      if (buf.size() == (begin_mode_ == GL_LINE_LOOP ? 2u : 1u)) buf.back() = v;
+      else buf.push_back(v);
       return;
     case GL_TRIANGLES: {
       buf.push_back(v);
@@ -172,7 +183,7 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
         // so that every triangle keeps the strip's orientation.
         const ProcessedVertex* p[3] = {&buf[0], &buf[1], &buf[2]};
         if (i % 2 == 1) std::swap(p[0], p[1]);
-        draw_polygon(p, 3, buf[2]);
+        draw_polygon(p, 3, buf[2], false);
         buf.erase(buf.begin());
       }
       return;
@@ -181,7 +192,7 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
       buf.push_back(v);
       if (buf.size() == 3) {
         const ProcessedVertex* p[3] = {&buf[0], &buf[1], &buf[2]};
-        draw_polygon(p, 3, buf[2]);
+        draw_polygon(p, 3, buf[2], false);
         buf.erase(buf.begin() + 1);
       }
       return;
@@ -189,8 +200,10 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
     case GL_QUADS: {
       buf.push_back(v);
       if (buf.size() == 4) {
-        if (profile_.arithmetic.immediate_quads_as_triangle_pairs && !drawing_arrays_) {
-          // The profile's decomposition (profile.hpp); the provoking vertex stays v3.
+        if (profile_.arithmetic.immediate_quads_as_triangle_pairs && !drawing_arrays_ &&
+            polygon_.mode_front == GL_FILL && polygon_.mode_back == GL_FILL) {
+          // The profile's decomposition (profile.hpp) of filled quads; the provoking vertex
+          // stays v3. (A quad drawn as lines or points keeps its four edges.)
           const ProcessedVertex* first[3] = {&buf[0], &buf[1], &buf[3]};
           const ProcessedVertex* second[3] = {&buf[1], &buf[2], &buf[3]};
           draw_polygon(first, 3, buf[3]);
@@ -208,7 +221,7 @@ void Context::emit_primitive_vertex(const ProcessedVertex& v) {
       if (buf.size() == 4) {
         // §2.6.1: quad j is (2j, 2j+1, 2j+3, 2j+2); the provoking vertex is 2j+3.
         const ProcessedVertex* p[4] = {&buf[0], &buf[1], &buf[3], &buf[2]};
-        draw_polygon(p, 4, buf[3]);
+        draw_polygon(p, 4, buf[3], false);
         buf.erase(buf.begin(), buf.begin() + 2);
       }
       return;
@@ -270,6 +283,86 @@ void Context::draw_point(const ProcessedVertex& v) {
   rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
 }
 
+void Context::draw_line(const ProcessedVertex& va, const ProcessedVertex& vb) {
+  Counters& c = counters();
+  ++c.primitives_in;
+  if (!finite_vertex(va) || !finite_vertex(vb)) {
+    warn_once("a vertex with NaN or infinite coordinates was dropped (its primitive is counted as clipped out)");
+    ++c.primitives_clipped_out;
+    return;
+  }
+  // Lines take the front colours (§2.13.1); lit before clipping, which interpolates them.
+  ProcessedVertex a = va, b = vb;
+  if (a.light_pending) light_pending_vertex(a, 0);
+  if (b.light_pending) light_pending_vertex(b, 0);
+  // §2.13.7: flat shading takes the segment's second vertex (also for a loop's closing segment,
+  // whose second vertex is the loop's first).
+  const Vec4 flat_color = b.color[0];
+  const Vec4 end = b.clip;
+  bool cut = false;
+  if (!clip_line(a, b, clip_planes_of(transform_), cut)) {
+    ++c.primitives_clipped_out;
+    return;
+  }
+  if (cut) ++c.primitives_clipped;
+  const RasterVertex wa = to_window(a, 0), wb = to_window(b, 0);
+  if (!wa.finite_position() || !wb.finite_position()) {
+    warn_once("a vertex with NaN or infinite window coordinates was dropped (its primitive is counted as clipped out)");
+    ++c.primitives_clipped_out;
+    return;
+  }
+  rasterize_line_segment(wa, wb, flat_color, 0.0, b.clip != end);
+}
+
+void Context::rasterize_line_segment(const RasterVertex& a, const RasterVertex& b, const Vec4& flat_color,
+                                     double depth_offset, bool open_end) {
+  Counters& c = counters();
+  TriangleOptions setup_options;
+  const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
+  TriangleOptions attributes = setup_options;
+  attributes.flat = lighting_.shade_model == GL_FLAT;
+  attributes.flat_color = flat_color;
+  LineOptions options;
+  options.width = line_width_of(polygon_.line_width);
+  options.depth_offset = depth_offset;
+  options.open_end = open_end;
+  if (polygon_.line_stipple) {
+    options.stipple = true;
+    options.stipple_pattern = polygon_.stipple_pattern;
+    options.stipple_factor = polygon_.stipple_repeat;
+    options.stipple_counter = line_stipple_counter_;
+    line_stipple_counter_ += line_fragment_count(a, b, options.width, open_end, setup.target.subpixel_bits);
+  }
+  if (scratch_->lanes) {
+    scratch_->lanes->line(a, b, attributes, options, setup, c);
+    raster_queued_ = true;
+    return;
+  }
+  rasterize_line(a, b, attributes, options, setup.target, scratch_->spans, fragment_sink(), c);
+}
+
+double Context::polygon_mode_offset(const std::vector<RasterVertex>& win, const RasterTarget& target) const {
+  // §3.5.5 (A7) on the plane of the first three vertices (A34), snapped as for filling (A5); a
+  // degenerate first triangle has slope 0.
+  const double r = target.depth_bits > 0 ? 1.0 / static_cast<double>(max_code(target.depth_bits)) : 0.0;
+  double m = 0.0;
+  if (win.size() >= 3) {
+    const double unit = static_cast<double>(std::int64_t{2} << target.subpixel_bits);
+    double x[3], y[3];
+    for (int k = 0; k < 3; ++k) {
+      x[k] = static_cast<double>(snap_coordinate(win[static_cast<std::size_t>(k)].x, target.subpixel_bits)) / unit;
+      y[k] = static_cast<double>(snap_coordinate(win[static_cast<std::size_t>(k)].y, target.subpixel_bits)) / unit;
+    }
+    const double ex1 = x[1] - x[0], ey1 = y[1] - y[0], ex2 = x[2] - x[0], ey2 = y[2] - y[0];
+    const double det = ex1 * ey2 - ex2 * ey1;
+    if (det != 0.0) {
+      const double dz1 = win[1].z - win[0].z, dz2 = win[2].z - win[0].z;
+      m = std::max(std::fabs((dz1 * ey2 - dz2 * ey1) / det), std::fabs((dz2 * ex1 - dz1 * ex2) / det));
+    }
+  }
+  return m * polygon_.offset_factor + r * polygon_.offset_units;
+}
+
 bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
                                PolygonWork& work, Counters& c) const {
   ++c.primitives_in;
@@ -282,6 +375,7 @@ bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count
       return false;
     }
     poly.push_back(*vertices[k]);
+    if (!work.edge_flags) poly.back().edge_flag = true;
   }
   bool cut = false;
   if (!clip_polygon(poly, work.clip_scratch, clip_planes_of(transform_), cut)) {
@@ -312,6 +406,7 @@ bool Context::assemble_polygon(const ProcessedVertex* const* vertices, int count
       poly.clear();
       for (int k = 0; k < count; ++k) {
         poly.push_back(*vertices[k]);
+        if (!work.edge_flags) poly.back().edge_flag = true;
         light_pending_vertex(poly.back(), face);
       }
       clip_polygon(poly, work.clip_scratch, clip_planes_of(transform_), cut);
@@ -377,10 +472,12 @@ TriangleOptions Context::polygon_options(const TriangleOptions& setup_options, c
   return options;
 }
 
-void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking) {
+void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, const ProcessedVertex& provoking,
+                           bool edge_flags) {
   Counters& c = counters();
   PolygonWork& work = scratch_->polygon_work;
   work.warnings = 0;
+  work.edge_flags = edge_flags;
   const bool drawn = assemble_polygon(vertices, count, provoking, work, c);
   note_polygon_warnings(work.warnings);
   if (!drawn) return;
@@ -389,15 +486,26 @@ void Context::draw_polygon(const ProcessedVertex* const* vertices, int count, co
   const FragmentStagesSetup& setup = primitive_stages_setup(setup_options);
   RasterLanes* lanes = scratch_->lanes.get();
   if (lanes) raster_queued_ = true;
+  const std::vector<ProcessedVertex>& poly = work.polygon;  // the same vertices, with their edge flags
   if (work.mode == GL_POINT) {
-    for (const RasterVertex& w : win) {
+    // §3.5.4: the vertices that start a boundary edge, as points; §3.5.5 offset when enabled.
+    const double offset = polygon_.offset_point ? polygon_mode_offset(win, setup.target) : 0.0;
+    for (std::size_t k = 0; k < win.size(); ++k) {
+      if (!poly[k].edge_flag) continue;
+      RasterVertex w = win[k];
+      w.z += offset;
       if (lanes) lanes->point(w, polygon_.point_size, setup, c);
       else rasterize_point(w, polygon_.point_size, setup.target, scratch_->spans, fragment_sink(), c);
     }
     return;
   }
   if (work.mode == GL_LINE) {
-    warn_once("glPolygonMode(GL_LINE) is not rasterized yet: such polygons produce no fragments");
+    // §3.5.4: the boundary edges (an edge starts at a vertex whose flag is true) as connected
+    // segments for the stipple, its counter reset at each polygon (A33); §3.5.5 offset.
+    const double offset = polygon_.offset_line ? polygon_mode_offset(win, setup.target) : 0.0;
+    line_stipple_counter_ = 0;
+    for (std::size_t k = 0; k < win.size(); ++k)
+      if (poly[k].edge_flag) rasterize_line_segment(win[k], win[(k + 1) % win.size()], work.flat_color, offset);
     return;
   }
   const TriangleOptions options = polygon_options(setup_options, work.flat_color);

@@ -56,4 +56,11 @@ void Context::glLineWidth(GLfloat width) {
   polygon_.line_width = width;
 }
 
+void Context::glLineStipple(GLint factor, GLushort pattern) {
+  PASSIM_ENTRY(factor, pattern)
+  // §3.4.2: the factor is clamped to [1, 256].
+  polygon_.stipple_repeat = std::clamp(factor, 1, 256);
+  polygon_.stipple_pattern = pattern;
+}
+
 }  // namespace passim

@@ -16,6 +16,9 @@ struct Context::PolygonWork {
   std::vector<RasterVertex> window;  // the polygon drawn, in window coordinates, lit
   GLenum mode = GL_FILL;             // its polygon mode (by facing)
   Vec4 flat_color{};                 // the provoking vertex's colour for the face drawn
+  // §2.6.2: whether the vertices' edge flags apply (separate triangles, quads, polygons);
+  // otherwise every edge is a boundary edge (strips and fans).
+  bool edge_flags = true;
   enum Warning : unsigned { kNonFiniteVertex = 1, kNonFiniteWindow = 2 };
   unsigned warnings = 0;
 };

@@ -91,6 +91,7 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POLYGON_OFFSET_FILL: polygon_.offset_fill = v; return true;
     case GL_POLYGON_OFFSET_LINE: polygon_.offset_line = v; return true;
     case GL_POLYGON_OFFSET_POINT: polygon_.offset_point = v; return true;
+    case GL_LINE_STIPPLE: polygon_.line_stipple = v; return true;
     case GL_SCISSOR_TEST: fragment_.scissor_enabled = v; return true;
     case GL_ALPHA_TEST: fragment_.alpha_test = v; return true;
     case GL_STENCIL_TEST: fragment_.stencil_test = v; return true;
@@ -117,7 +118,6 @@ bool Context::set_capability(GLenum cap, bool v) {
     case GL_POINT_SMOOTH:
     case GL_LINE_SMOOTH:
     case GL_POLYGON_SMOOTH:
-    case GL_LINE_STIPPLE:
     case GL_POLYGON_STIPPLE:
     case GL_TEXTURE_3D:
     case GL_AUTO_NORMAL:
@@ -224,7 +224,8 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_FOG_START: return one(fog_.start);
     case GL_FOG_END: return one(fog_.end);
     case GL_FOG_COLOR: return color(fog_.color);
-    case GL_LINE_STIPPLE: case GL_POLYGON_STIPPLE:
+    case GL_LINE_STIPPLE: return one(polygon_.line_stipple);
+    case GL_POLYGON_STIPPLE:
     case GL_COLOR_TABLE: return one(transfer_.tables[kColorTable].enabled);
     case GL_POST_CONVOLUTION_COLOR_TABLE: return one(transfer_.tables[kPostConvolutionTable].enabled);
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: return one(transfer_.tables[kPostColorMatrixTable].enabled);
@@ -311,6 +312,8 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_POLYGON_OFFSET_UNITS: return one(polygon_.offset_units);
     case GL_POINT_SIZE: return one(polygon_.point_size);
     case GL_LINE_WIDTH: return one(polygon_.line_width);
+    case GL_LINE_STIPPLE_PATTERN: return one(polygon_.stipple_pattern);
+    case GL_LINE_STIPPLE_REPEAT: return one(polygon_.stipple_repeat);
     // lighting and current values
     case GL_SHADE_MODEL: return one(lighting_.shade_model);
     case GL_LIGHT_MODEL_AMBIENT: return color(lighting_.model_ambient);

@@ -143,6 +143,7 @@ void Context::glBegin(GLenum mode) {
   materials_dirty_ = true;
   prim_vertices_.clear();
   prim_vertex_count_ = 0;
+  line_stipple_counter_ = 0;  // §3.4.2: reset whenever a Begin occurs
 }
 
 void Context::glEnd() {
@@ -153,6 +154,7 @@ void Context::glEnd() {
     for (const auto& v : prim_vertices_) ptrs.push_back(&v);
     draw_polygon(ptrs.data(), static_cast<int>(ptrs.size()), prim_vertices_.front());
   }
+  if (begin_mode_ == GL_LINE_LOOP && prim_vertices_.size() == 2) draw_line(prim_vertices_[1], prim_vertices_[0]);  // §2.6.1: the closing segment
   in_begin_ = false;
   prim_vertices_.clear();
 }

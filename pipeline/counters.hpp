@@ -14,7 +14,7 @@ namespace passim {
 #define PASSIM_COUNTER_FIELDS(X) \
   /* geometry */ \
   X(vertices) \
-  X(primitives_in) /* GL primitives: points, triangles, quads, polygons */ \
+  X(primitives_in) /* GL primitives: points, line segments, triangles, quads, polygons */ \
   X(primitives_clipped) /* cut by a clip plane (partly inside) */ \
   X(primitives_clipped_out) /* wholly outside the clip volume */ \
   X(primitives_culled) \

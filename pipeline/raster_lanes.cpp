@@ -156,6 +156,13 @@ void RasterLanes::triangles(const AssembledTriangle* first, const TriangleRows* 
 void RasterLanes::point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass) {
   add(Job{{v, v, v}, TriangleOptions{}, true, size}, 1, setup, pass);
 }
+void RasterLanes::line(const RasterVertex& a, const RasterVertex& b, const TriangleOptions& attributes,
+                       const LineOptions& options, const FragmentStagesSetup& setup, Counters& pass) {
+  Job job{{a, b, b}, attributes, false, 1.0};
+  job.is_line = true;
+  job.line_options = options;
+  add(job, 1, setup, pass);
+}
 
 void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t from, std::size_t to) const {
   for (std::size_t k = from; k < to; ++k) {
@@ -197,7 +204,10 @@ void RasterLanes::run_jobs(Lane& lane, const RasterTarget& target, std::size_t f
                              *lane.stages.first, lane.counters, &job.run_rows[drawn[k]]);
         }
       }
-    } else if (job.is_point)
+    } else if (job.is_line)
+      rasterize_line(job.v[0], job.v[1], job.options, job.line_options, target, lane.spans, *lane.stages.first,
+                     lane.counters);
+    else if (job.is_point)
       rasterize_point(job.v[0], job.point_size, target, lane.spans, *lane.stages.first, lane.counters);
     else
       rasterize_triangle(job.v[0], job.v[1], job.v[2], job.options, target, lane.spans, *lane.stages.first,

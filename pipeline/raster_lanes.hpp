@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "stages/fragment_stages.hpp"
+#include "stages/line_rasterizer.hpp"
 
 namespace passim {
 
@@ -71,11 +72,13 @@ class RasterLanes {
 
   int lanes() const { return static_cast<int>(lanes_.size()); }
   bool pending() const { return queued_ > 0; }
-  // Queue a triangle or a point drawn under `setup`. A setup different from the queued
+  // Queue a triangle, a point or a line segment drawn under `setup`. A setup different from the queued
   // primitives' (or a full queue) first flushes the queue into `pass`.
   void triangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, const TriangleOptions& options,
                 const FragmentStagesSetup& setup, Counters& pass);
   void point(const RasterVertex& v, double size, const FragmentStagesSetup& setup, Counters& pass);
+  void line(const RasterVertex& a, const RasterVertex& b, const TriangleOptions& attributes,
+            const LineOptions& options, const FragmentStagesSetup& setup, Counters& pass);
   // Queue `count` triangles drawn with `options` but each its own flat colour, by reference:
   // they must stay as they are until the queue is run (queue_serial() has moved on, or
   // pending() is false).
@@ -124,6 +127,8 @@ class RasterLanes {
     const AssembledTriangle* run = nullptr;  // triangles queued by reference: v unused
     const TriangleRows* run_rows = nullptr;  // their rows
     std::size_t run_count = 0;
+    bool is_line = false;  // v[0] → v[1] with options (its attributes) and line_options
+    LineOptions line_options{};
   };
   using Lane = LaneStages;
   // A row group's progress through the published jobs.

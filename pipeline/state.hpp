@@ -77,7 +77,7 @@ struct LightingState {
   std::vector<Light> lights;
 };
 
-// Table 6.10-6.11 (rasterization: points, polygons).
+// Table 6.10-6.11 (rasterization: points, lines, polygons).
 struct PolygonState {
   bool cull_enabled = false;
   GLenum cull_face = GL_BACK;
@@ -87,6 +87,10 @@ struct PolygonState {
   bool offset_fill = false, offset_line = false, offset_point = false;
   double point_size = 1.0;
   double line_width = 1.0;
+  // §3.4.2 line stipple.
+  bool line_stipple = false;
+  std::uint16_t stipple_pattern = 0xFFFF;
+  int stipple_repeat = 1;
 };
 
 // Table 6.15 (pixel operations).

@@ -70,11 +70,37 @@ bool clip_polygon(std::vector<ProcessedVertex>& poly, std::vector<ProcessedVerte
       const double da = plane_distance(a, k, planes);
       const double db = plane_distance(b, k, planes);
       if (da >= 0.0) scratch.push_back(a);
-      if ((da >= 0.0) != (db >= 0.0)) scratch.push_back(lerp(a, b, da / (da - db)));
+      if ((da >= 0.0) != (db >= 0.0)) {
+        // §2.11: an edge introduced by clipping (from the vertex where the polygon leaves the
+        // plane to where it comes back) is a boundary edge; the cut part of an original edge
+        // keeps that edge's flag.
+        scratch.push_back(lerp(a, b, da / (da - db)));
+        scratch.back().edge_flag = da >= 0.0 ? true : a.edge_flag;
+      }
     }
     poly.swap(scratch);
   }
   return poly.size() >= 3;
+}
+
+bool clip_line(ProcessedVertex& a, ProcessedVertex& b, const ClipPlanes& planes, bool& cut) {
+  cut = false;
+  if (trivially_inside(a, planes) && trivially_inside(b, planes)) return true;
+  for (int k = 0; k < 12; ++k) {
+    if (!plane_active(k, planes)) continue;
+    const double da = plane_distance(a, k, planes);
+    const double db = plane_distance(b, k, planes);
+    if (da < 0.0 && db < 0.0) return false;
+    if (da >= 0.0 && db >= 0.0) continue;
+    cut = true;
+    // The same parameter as polygon clipping's, from the vertex inside.
+    if (da < 0.0) {
+      a = lerp(b, a, db / (db - da));
+    } else {
+      b = lerp(a, b, da / (da - db));
+    }
+  }
+  return true;
 }
 
 }  // namespace passim

@@ -1,5 +1,6 @@
 // Primitive clipping, OpenGL 1.2.1 §2.11: the view volume -w <= x, y, z <= w and
-// the enabled client-defined planes (p · eye >= 0), for convex polygons and points.
+// the enabled client-defined planes (p · eye >= 0), for convex polygons, line segments and
+// points.
 #pragma once
 #include <array>
 #include <vector>
@@ -25,5 +26,10 @@ bool trivially_inside(const ProcessedVertex& v, const ClipPlanes& planes);
 // Returns false when nothing is left; `cut` tells whether any plane cut the polygon.
 bool clip_polygon(std::vector<ProcessedVertex>& poly, std::vector<ProcessedVertex>& scratch,
                   const ClipPlanes& planes, bool& cut);
+
+// Clips the segment a → b in place (§2.11: a cut end point takes the attributes at the same
+// parameter t as its clip coordinates, a + t·(b − a)). Returns false when nothing is left;
+// `cut` tells whether any plane cut the segment.
+bool clip_line(ProcessedVertex& a, ProcessedVertex& b, const ClipPlanes& planes, bool& cut);
 
 }  // namespace passim

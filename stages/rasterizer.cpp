@@ -273,7 +273,8 @@ void rasterize_point(const RasterVertex& v, double size, const RasterTarget& tar
                      FragmentSink& sink, Counters& counters) {
   // §3.3.1: width w = max(1, round(size)); odd w is centred on the pixel holding the point,
   // even w on the nearest pixel corner.
-  const int w = std::max(1, static_cast<int>(round_half_up(size)));
+  // Sizes above kMaxPointSize draw as that size (A34).
+  const int w = std::max(1, static_cast<int>(round_half_up(std::min(size, kMaxPointSize))));
   std::int64_t x_lo, y_lo;
   if (w % 2 == 1) {
     x_lo = static_cast<std::int64_t>(std::floor(v.x)) - (w - 1) / 2;

@@ -128,7 +128,9 @@ void rasterize_triangle(const RasterVertex& v0, const RasterVertex& v1, const Ra
                         const TriangleOptions& options, const RasterTarget& target, SpanBuffers& buffers,
                         FragmentSink& sink, Counters& counters, const TriangleRows* rows = nullptr);
 
-// Non-antialiased point of the given size (§3.3.1).
+// Non-antialiased point of the given size (§3.3.1), at most kMaxPointSize wide (the
+// implementation's largest aliased point, A34).
+constexpr double kMaxPointSize = 64.0;
 // Point fragments take the vertex's s/q, t/q, r/q and λ = 0 (ρ = 1).
 void rasterize_point(const RasterVertex& v, double size, const RasterTarget& target, SpanBuffers& buffers,
                      FragmentSink& sink, Counters& counters);
