@@ -113,7 +113,7 @@ std::vector<CallInfo::Param> parse_signature(std::string_view call, std::string_
       if (rule.empty() && p.kind != 'O') bad_row(call, fmt::format("array '{}' has no length rule", p.name));
       p.length = Length::Any;  // refined below, once every name is known
       rules.emplace_back(params.size(), rule);
-    } else if (!rule.empty() || !std::strchr("emnzbiucghwfdsxy", p.kind)) {
+    } else if (!rule.empty() || !std::strchr("emnzbkiucghwfdsxy", p.kind)) {
       bad_row(call, fmt::format("token '{}' is not a scalar or an array", token));
     }
     params.push_back(p);
@@ -265,6 +265,11 @@ const std::vector<CallInfo>& table() {
       ROW(glHint, "e:target e:mode", kNone),
       ROW(glFlush, "", kNotCompiled),
       ROW(glFinish, "", kNotCompiled),
+      // attribute stacks (§6.1.14): the client stack is client state, not compiled (§5.4)
+      ROW(glPushAttrib, "b:mask", kNone),
+      ROW(glPopAttrib, "", kNone),
+      ROW(glPushClientAttrib, "k:mask", kNotCompiled),
+      ROW(glPopClientAttrib, "", kNotCompiled),
       // framebuffer control
       ROW(glClear, "b:mask", kDraws),
       ROW(glClearColor, "f:red f:green f:blue f:alpha", kNone),
@@ -629,7 +634,7 @@ std::string describe_call(const CallInfo& info) {
     switch (kind) {
       case 'e': case 'n': case 'm': return "GLenum";
       case 'z': return "GLboolean";
-      case 'b': return "GLbitfield";
+      case 'b': case 'k': return "GLbitfield";
       case 'i': return "GLint";
       case 'x': return "GLint(or enum)";
       case 'u': return "GLuint";
@@ -698,6 +703,7 @@ std::string format_call(const Call& call) {
       case 'n': out += enum_name(static_cast<std::uint32_t>(v.i), EnumRole::Buffer); break;
       case 'z': out += enum_name(static_cast<std::uint32_t>(v.i), EnumRole::Boolean); break;
       case 'b': out += bitfield_name(static_cast<std::uint32_t>(v.i)); break;
+      case 'k': out += client_bitfield_name(static_cast<std::uint32_t>(v.i)); break;
       case 'i':
       case 'u':
       case 'c':

@@ -39,7 +39,8 @@ struct Value {
 // its kind: "e:target i:level x:internalformat i:width e:format e:type V{image width}:pixels".
 // Scalars:
 //   e enum   m primitive mode   n buffer enum (0 prints GL_NONE)   z GLboolean
-//   b bitfield   i int   u uint   c GLubyte   g GLbyte   h GLshort   w GLushort
+//   b bitfield (PushAttrib's and Clear's bits)   k client attribute bitfield (PushClientAttrib's)
+//   i int   u uint   c GLubyte   g GLbyte   h GLshort   w GLushort
 //   f float   d double   s string
 //   x int that may hold an enum value   y float that may hold an enum value
 // Arrays (client memory), followed by their length rule:

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/attrib_stack.hpp"
 #include "pipeline/calls.hpp"
 #include "pipeline/counters.hpp"
 #include "pipeline/framebuffer.hpp"
@@ -104,6 +105,12 @@ class Context {
   void glHint(GLenum target, GLenum mode);
   void glFlush();
   void glFinish();
+
+  // ---- attribute stacks (§6.1.14): context_attrib.cpp ----
+  void glPushAttrib(GLbitfield mask);
+  void glPopAttrib();
+  void glPushClientAttrib(GLbitfield mask);
+  void glPopClientAttrib();
 
   // ---- framebuffer control, clears and accumulation (§4.2): context_framebuffer.cpp ----
   void glClear(GLbitfield mask);
@@ -394,6 +401,10 @@ class Context {
   std::uint64_t filter_output_elements(GLenum target, GLenum format, GLenum type, int part) const;
   std::uint64_t histogram_output_elements(GLenum format, GLenum type) const;
   std::uint64_t minmax_output_elements(GLenum format, GLenum type) const;
+  // The client attribute stack's depth (a trace replayer keeps the array data it saved alive).
+  std::size_t client_attrib_depth() const { return client_attrib_stack_.size(); }
+  // The groups the top entry of the client stack saved (0 when it is empty).
+  GLbitfield client_attrib_top_mask() const { return client_attrib_stack_.empty() ? 0 : client_attrib_stack_.back().mask; }
   // The texture object bound to a target (GL_TEXTURE_1D/2D); nullptr for another target.
   const TextureObject* bound_texture(GLenum target) const;
   // Bits of each fragment colour channel (A26: alpha carried at RGB precision when the
@@ -446,6 +457,11 @@ class Context {
     set(v);
   }
   bool set_capability(GLenum cap, bool value);
+  // Every capability Enable accepts (§2.11 and the tables' "enable" attributes), in one order.
+  std::vector<GLenum> capabilities() const;
+  // The attribute groups' saving and restoring (context_attrib.cpp).
+  void save_attribs(ServerAttribs& saved);
+  void restore_attribs(const ServerAttribs& saved);
   bool get_state(GLenum pname, std::vector<double>& out, bool& is_color) const;
   std::vector<Mat4>& current_stack();
   void mult_matrix(const Mat4& m);
@@ -715,6 +731,9 @@ class Context {
   RasterPosState raster_;
   PixelTransferState transfer_;
   double zoom_x_ = 1.0, zoom_y_ = 1.0;
+  HintState hints_;
+  std::vector<ServerAttribs> attrib_stack_;         // §6.1.14
+  std::vector<ClientAttribs> client_attrib_stack_;
   std::vector<ColorBufferId> draw_buffer_ids_;
   Mat4 normal_matrix_{1.0};
   bool normal_matrix_dirty_ = true;

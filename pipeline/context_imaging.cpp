@@ -168,6 +168,13 @@ void Context::glGetColorTableParameteriv(GLenum target, GLenum pname, GLint* par
     case GL_COLOR_TABLE_ALPHA_SIZE: params[0] = f->alpha; break;
     case GL_COLOR_TABLE_LUMINANCE_SIZE: params[0] = f->luminance; break;
     case GL_COLOR_TABLE_INTENSITY_SIZE: params[0] = f->intensity; break;
+    // Table 6.18's scale and bias (attribute "pixel"), rounded to integers (§6.1.2).
+    case GL_COLOR_TABLE_SCALE: case GL_COLOR_TABLE_BIAS: {
+      const Vec4& v = pname == GL_COLOR_TABLE_SCALE ? t.scale : t.bias;
+      for (int k = 0; k < 4; ++k)
+        params[k] = static_cast<GLint>(std::clamp(round_half_up(v[k]), -2147483648.0, 2147483647.0));
+      break;
+    }
     default: return set_error(GL_INVALID_ENUM);
   }
 }

@@ -218,6 +218,7 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_PACK_SWAP_BYTES: return one(pixel_store_.pack.swap_bytes);
     case GL_PACK_LSB_FIRST: return one(pixel_store_.pack.lsb_first);
     case GL_INDEX_LOGIC_OP: case GL_POINT_SMOOTH: case GL_LINE_SMOOTH: case GL_POLYGON_SMOOTH:
+      return one(0.0);  // never enabled (unmodelled_caps_ holds them once set)
     case GL_FOG: return one(fog_.enabled);
     case GL_FOG_MODE: return one(fog_.mode);
     case GL_FOG_DENSITY: return one(fog_.density);
@@ -225,7 +226,7 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_FOG_END: return one(fog_.end);
     case GL_FOG_COLOR: return color(fog_.color);
     case GL_LINE_STIPPLE: return one(polygon_.line_stipple);
-    case GL_POLYGON_STIPPLE:
+    case GL_POLYGON_STIPPLE: return one(0.0);
     case GL_COLOR_TABLE: return one(transfer_.tables[kColorTable].enabled);
     case GL_POST_CONVOLUTION_COLOR_TABLE: return one(transfer_.tables[kPostConvolutionTable].enabled);
     case GL_POST_COLOR_MATRIX_COLOR_TABLE: return one(transfer_.tables[kPostColorMatrixTable].enabled);
@@ -260,6 +261,15 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
     case GL_MAX_TEXTURE_SIZE: return one(lim.max_texture_size);
     case GL_SUBPIXEL_BITS: return one(lim.subpixel_bits);
     case GL_MAX_ATTRIB_STACK_DEPTH: return one(lim.max_attrib_stack);
+    case GL_MAX_CLIENT_ATTRIB_STACK_DEPTH: return one(lim.max_client_attrib_stack);
+    case GL_ATTRIB_STACK_DEPTH: return one(static_cast<double>(attrib_stack_.size()));
+    case GL_CLIENT_ATTRIB_STACK_DEPTH: return one(static_cast<double>(client_attrib_stack_.size()));
+    // hints (Table 6.25)
+    case GL_PERSPECTIVE_CORRECTION_HINT: return one(hints_.perspective_correction);
+    case GL_POINT_SMOOTH_HINT: return one(hints_.point_smooth);
+    case GL_LINE_SMOOTH_HINT: return one(hints_.line_smooth);
+    case GL_POLYGON_SMOOTH_HINT: return one(hints_.polygon_smooth);
+    case GL_FOG_HINT: return one(hints_.fog);
     // framebuffer
     case GL_RED_BITS: return one(cfg.color_bits[0]);
     case GL_GREEN_BITS: return one(cfg.color_bits[1]);
@@ -334,6 +344,39 @@ bool Context::get_state(GLenum p, std::vector<double>& out, bool& is_color) cons
       return true;
     case GL_CURRENT_RASTER_POSITION_VALID: return one(raster_.valid);
     case GL_CURRENT_RASTER_COLOR: return color(raster_.color);
+    // pixel transfer and zoom (Tables 6.17-6.18)
+    case GL_ZOOM_X: return one(zoom_x_);
+    case GL_ZOOM_Y: return one(zoom_y_);
+    case GL_MAP_COLOR: return one(transfer_.map_color);
+    case GL_MAP_STENCIL: return one(transfer_.map_stencil);
+    case GL_INDEX_SHIFT: return one(transfer_.index_shift);
+    case GL_INDEX_OFFSET: return one(transfer_.index_offset);
+    case GL_RED_SCALE: return one(transfer_.scale.r);
+    case GL_GREEN_SCALE: return one(transfer_.scale.g);
+    case GL_BLUE_SCALE: return one(transfer_.scale.b);
+    case GL_ALPHA_SCALE: return one(transfer_.scale.a);
+    case GL_RED_BIAS: return one(transfer_.bias.r);
+    case GL_GREEN_BIAS: return one(transfer_.bias.g);
+    case GL_BLUE_BIAS: return one(transfer_.bias.b);
+    case GL_ALPHA_BIAS: return one(transfer_.bias.a);
+    case GL_DEPTH_SCALE: return one(transfer_.depth_scale);
+    case GL_DEPTH_BIAS: return one(transfer_.depth_bias);
+    case GL_POST_CONVOLUTION_RED_SCALE: return one(transfer_.post_convolution_scale.r);
+    case GL_POST_CONVOLUTION_GREEN_SCALE: return one(transfer_.post_convolution_scale.g);
+    case GL_POST_CONVOLUTION_BLUE_SCALE: return one(transfer_.post_convolution_scale.b);
+    case GL_POST_CONVOLUTION_ALPHA_SCALE: return one(transfer_.post_convolution_scale.a);
+    case GL_POST_CONVOLUTION_RED_BIAS: return one(transfer_.post_convolution_bias.r);
+    case GL_POST_CONVOLUTION_GREEN_BIAS: return one(transfer_.post_convolution_bias.g);
+    case GL_POST_CONVOLUTION_BLUE_BIAS: return one(transfer_.post_convolution_bias.b);
+    case GL_POST_CONVOLUTION_ALPHA_BIAS: return one(transfer_.post_convolution_bias.a);
+    case GL_POST_COLOR_MATRIX_RED_SCALE: return one(transfer_.post_color_matrix_scale.r);
+    case GL_POST_COLOR_MATRIX_GREEN_SCALE: return one(transfer_.post_color_matrix_scale.g);
+    case GL_POST_COLOR_MATRIX_BLUE_SCALE: return one(transfer_.post_color_matrix_scale.b);
+    case GL_POST_COLOR_MATRIX_ALPHA_SCALE: return one(transfer_.post_color_matrix_scale.a);
+    case GL_POST_COLOR_MATRIX_RED_BIAS: return one(transfer_.post_color_matrix_bias.r);
+    case GL_POST_COLOR_MATRIX_GREEN_BIAS: return one(transfer_.post_color_matrix_bias.g);
+    case GL_POST_COLOR_MATRIX_BLUE_BIAS: return one(transfer_.post_color_matrix_bias.b);
+    case GL_POST_COLOR_MATRIX_ALPHA_BIAS: return one(transfer_.post_color_matrix_bias.a);
     // lists and arrays
     case GL_LIST_BASE: return one(list_base_);
     case GL_LIST_INDEX: return one(compiling_list_);
@@ -400,13 +443,19 @@ void Context::glGetBooleanv(GLenum pname, GLboolean* params) {
 
 void Context::glHint(GLenum target, GLenum mode) {
   PASSIM_ENTRY(target, mode)
+  GLenum* hint = nullptr;
   switch (target) {
-    case GL_PERSPECTIVE_CORRECTION_HINT: case GL_POINT_SMOOTH_HINT: case GL_LINE_SMOOTH_HINT:
-    case GL_POLYGON_SMOOTH_HINT: case GL_FOG_HINT: break;
+    case GL_PERSPECTIVE_CORRECTION_HINT: hint = &hints_.perspective_correction; break;
+    case GL_POINT_SMOOTH_HINT: hint = &hints_.point_smooth; break;
+    case GL_LINE_SMOOTH_HINT: hint = &hints_.line_smooth; break;
+    case GL_POLYGON_SMOOTH_HINT: hint = &hints_.polygon_smooth; break;
+    case GL_FOG_HINT: hint = &hints_.fog; break;
     default: return set_error(GL_INVALID_ENUM);
   }
-  if (mode != GL_FASTEST && mode != GL_NICEST && mode != GL_DONT_CARE) set_error(GL_INVALID_ENUM);
-  // Hints never change the bits here: the arithmetic is fixed (docs/arithmetic.md).
+  if (mode != GL_FASTEST && mode != GL_NICEST && mode != GL_DONT_CARE) return set_error(GL_INVALID_ENUM);
+  // Hints never change the bits here: the arithmetic is fixed (docs/arithmetic.md); they are
+  // kept for the queries and HINT_BIT.
+  *hint = mode;
 }
 
 void Context::glFlush() { PASSIM_ENTRY() }

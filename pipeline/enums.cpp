@@ -5,6 +5,7 @@
 
 #include <array>
 #include <unordered_map>
+#include <utility>
 
 namespace passim {
 namespace {
@@ -96,9 +97,30 @@ std::string bitfield_name(std::uint32_t value) {
       {GL_SCISSOR_BIT, "GL_SCISSOR_BIT"},
   };
   if (value == 0) return "0";
+  if (value == GL_ALL_ATTRIB_BITS) return "GL_ALL_ATTRIB_BITS";
   std::string out;
   std::uint32_t rest = value;
   for (const auto& [bit, name] : bits) {
+    if (value & bit) {
+      if (!out.empty()) out += " | ";
+      out += name;
+      rest &= ~bit;
+    }
+  }
+  if (rest) {
+    if (!out.empty()) out += " | ";
+    out += fmt::format("0x{:X}", rest);
+  }
+  return out;
+}
+
+std::string client_bitfield_name(std::uint32_t value) {
+  if (value == GL_CLIENT_ALL_ATTRIB_BITS) return "GL_CLIENT_ALL_ATTRIB_BITS";
+  if (value == 0) return "0";
+  std::string out;
+  std::uint32_t rest = value;
+  for (const auto& [bit, name] : {std::pair<std::uint32_t, const char*>{GL_CLIENT_PIXEL_STORE_BIT, "GL_CLIENT_PIXEL_STORE_BIT"},
+                                  {GL_CLIENT_VERTEX_ARRAY_BIT, "GL_CLIENT_VERTEX_ARRAY_BIT"}}) {
     if (value & bit) {
       if (!out.empty()) out += " | ";
       out += name;

@@ -20,7 +20,10 @@ std::optional<std::uint32_t> enum_value(std::string_view name);
 // The canonical name of a value for a role; "0x...." when it has none.
 std::string enum_name(std::uint32_t value, EnumRole role = EnumRole::Generic);
 // The names of bits set in a GL bitfield ("GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT").
+// GL_ALL_ATTRIB_BITS for every bit.
 std::string bitfield_name(std::uint32_t value);
+// The same for PushClientAttrib's bits ("GL_CLIENT_PIXEL_STORE_BIT", GL_CLIENT_ALL_ATTRIB_BITS).
+std::string client_bitfield_name(std::uint32_t value);
 
 // An enum passed through a float parameter (glTexParameterf(..., GL_LINEAR)): its value when it
 // is a whole number in GLenum's range, else 0, which no such parameter accepts — so a negative,

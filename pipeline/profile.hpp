@@ -29,6 +29,7 @@ struct MachineLimits {
   int max_pixel_map_table = 256;
   int max_eval_order = 8;
   int max_attrib_stack = 16;
+  int max_client_attrib_stack = 16;
   int subpixel_bits = 4;  // window-coordinate snapping of vertices (A5)
 };
 

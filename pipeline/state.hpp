@@ -152,6 +152,16 @@ struct PixelState {
   GLenum read_buffer = GL_BACK;
 };
 
+// Table 6.25 (hints, attribute "hint"): they never change the bits here (docs/arithmetic.md),
+// but are kept for the queries and the attribute stack.
+struct HintState {
+  GLenum perspective_correction = GL_DONT_CARE;
+  GLenum point_smooth = GL_DONT_CARE;
+  GLenum line_smooth = GL_DONT_CARE;
+  GLenum polygon_smooth = GL_DONT_CARE;
+  GLenum fog = GL_DONT_CARE;
+};
+
 // Table 6.6 (vertex arrays: client state).
 struct ClientArray {
   bool enabled = false;

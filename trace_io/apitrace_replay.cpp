@@ -285,7 +285,7 @@ class ApitraceReplayer {
     const RecordedValue* a = &*call.args[k];
     if (a->kind == Kind::Repr && a->items.size() == 2) a = &a->items[1];
     switch (p.kind) {
-      case 'e': case 'm': case 'n': case 'b': case 'x': case 'z': case 'i': case 'u': case 'c': case 'g': case 'h':
+      case 'e': case 'm': case 'n': case 'b': case 'k': case 'x': case 'z': case 'i': case 'u': case 'c': case 'g': case 'h':
       case 'w': {
         if (!a->is_integer()) return bad("is not an integer or enum");
         const std::int64_t x = a->as_integer();

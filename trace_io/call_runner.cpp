@@ -65,10 +65,20 @@ void CallRunner::run(const CallInfo& info, const std::vector<Value>& values, con
     report_errors();
     return;
   }
+  const std::size_t client_depth = ctx_.client_attrib_depth();
+  const GLbitfield client_top = ctx_.client_attrib_top_mask();
   try {
     info.invoke(ctx_, values);
   } catch (const ClientDataError& e) {
     reject(e.what());
+  }
+  // PushClientAttrib saved the arrays' pointers: their data stays alive until the pop, which
+  // brings back the data they read when it restores the arrays (CLIENT_VERTEX_ARRAY_BIT).
+  if (ctx_.client_attrib_depth() > client_depth) {
+    saved_keep_alive_.push_back(keep_alive_);
+  } else if (ctx_.client_attrib_depth() < client_depth && !saved_keep_alive_.empty()) {
+    if (client_top & GL_CLIENT_VERTEX_ARRAY_BIT) keep_alive_ = std::move(saved_keep_alive_.back());
+    saved_keep_alive_.pop_back();
   }
   if (info.recorded_at_draw()) {
     const Value& data = values.back();

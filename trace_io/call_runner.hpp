@@ -45,6 +45,7 @@ class CallRunner {
   std::size_t reported_errors_ = 0;
   class QueryLog* queries_ = nullptr;
   std::map<GLenum, std::shared_ptr<const std::vector<std::byte>>> keep_alive_;  // client arrays in use
+  std::vector<std::map<GLenum, std::shared_ptr<const std::vector<std::byte>>>> saved_keep_alive_;  // per client push
 };
 
 }  // namespace passim

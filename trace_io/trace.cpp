@@ -643,7 +643,7 @@ class Replayer {
       return *n;
     };
     switch (p.kind) {
-      case 'e': case 'm': case 'n': case 'b': case 'x': {
+      case 'e': case 'm': case 'n': case 'b': case 'k': case 'x': {
         need_expr();
         std::int64_t acc = 0;
         for (const std::string& t : a.terms) acc |= enum_term(t);
